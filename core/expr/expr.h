@@ -1,0 +1,186 @@
+// Expressions: force, torque and link-point formulas as a hash-consed DAG.
+//
+//   text ──Parse──▶ NodeId ──Derivative──▶ NodeId ──Tape::Compile──▶ Tape
+//                    │  (every node is unique: equal subtrees share one id,
+//                    │   so common subexpressions are evaluated once)
+//                    └─ Variables / DependsOnTime / TimeBreakpoints (analysis)
+//
+// A Pool owns all nodes.  Node constructors simplify as they build (constant
+// folding, x+0, x*1, x*0, x-x, flattening and canonical ordering of sums and
+// products with numeric coefficients collected), so two algebraically
+// identical forms built in different orders usually get the same id.  In
+// particular c*a*b - c*b*a folds to 0, which keeps a sphere's rotational axes
+// decoupled.
+//
+// Leaves:
+//   Const(v)                 a number
+//   Time()                   the independent variable t
+//   Var(i)                   state variable i (index into the value array
+//                            passed to Tape::Evaluate)
+//   Extern(fn, d)            d-th time derivative of external function fn at t
+//                            (trajectory components); d/dt Extern(fn,d) =
+//                            Extern(fn,d+1)
+//
+// Rejected alternatives: (1) Tcl's own expr — no derivatives, no reference
+// graph; (2) a tree without sharing — link forces repeat the rotation matrix
+// dozens of times, the DAG evaluates it once; (3) generated C now — the tape is
+// within a small factor and needs no compiler at run time (may come later
+// behind Tape's interface).
+#pragma once
+
+#include <cstdint>
+#include <functional>
+#include <memory>
+#include <optional>
+#include <span>
+#include <stdexcept>
+#include <string>
+#include <string_view>
+#include <vector>
+
+namespace asgard::expr {
+
+using NodeId = uint32_t;
+
+enum class Op : uint8_t {
+  // leaves
+  kConst, kTime, kVar, kExtern,
+  // arithmetic (kAdd and kMul are n-ary, canonical order)
+  kAdd, kMul, kPow,  // a - b is Add(a, Mul(-1, b)); a / b is Mul(a, Pow(b, -1))
+  // functions of one argument
+  kSin, kCos, kTan, kAsin, kAcos, kAtan, kSinh, kCosh, kTanh,
+  kExp, kLog, kSqrt, kAbs, kFloor, kCeil, kSign,
+  // functions of two arguments
+  kAtan2, kMin, kMax, kFmod, kHypot,
+  // comparisons and logic: 1.0 for true, 0.0 for false; derivative 0
+  kLt, kLe, kGt, kGe, kEq, kNe, kAnd, kOr, kNot,
+  // Select(c, a, b): c != 0 ? a : b
+  kSelect,
+};
+
+const char* OpName(Op op);
+
+struct Node {
+  Op op = Op::kConst;
+  double value = 0.0;           // kConst
+  int32_t index = 0;            // kVar: variable; kExtern: function
+  int32_t order = 0;            // kExtern: derivative order
+  std::vector<NodeId> args;     // operands (kAdd/kMul: canonical order)
+};
+
+// Thrown by Parse on bad expression text.  `offset` is a byte offset into the
+// parsed text where the problem was found.
+class ParseError : public std::runtime_error {
+ public:
+  ParseError(const std::string& message, int offset)
+      : std::runtime_error(message), offset_(offset) {}
+  int offset() const { return offset_; }
+
+ private:
+  int offset_;
+};
+
+class Pool {
+ public:
+  Pool();
+
+  // Leaves.
+  NodeId Const(double v);
+  NodeId Time();
+  NodeId Var(int index);
+  NodeId Extern(int fn, int order);
+
+  // Arithmetic (simplifying).
+  NodeId Add(NodeId a, NodeId b);
+  NodeId Sub(NodeId a, NodeId b);
+  NodeId Mul(NodeId a, NodeId b);
+  NodeId Div(NodeId a, NodeId b);
+  NodeId Neg(NodeId a);
+  NodeId Pow(NodeId a, NodeId b);
+  NodeId Sum(std::span<const NodeId> terms);
+  // Apply a function or comparison op to its arguments (arity checked).
+  NodeId Apply(Op op, std::span<const NodeId> args);
+  NodeId Select(NodeId cond, NodeId a, NodeId b);
+
+  const Node& node(NodeId id) const { return nodes_[id]; }
+  size_t size() const { return nodes_.size(); }
+
+  bool IsConst(NodeId id) const { return nodes_[id].op == Op::kConst; }
+  // The constant value of `id` if it is a constant.
+  std::optional<double> ConstValue(NodeId id) const;
+
+  // Symbolic derivatives (simplified).
+  NodeId Derivative(NodeId e, int var_index);  // d e / d Var(var_index)
+  NodeId TimeDerivative(NodeId e);             // partial d e / d t (Var held fixed)
+
+  // Analysis.
+  std::vector<int> Variables(NodeId e) const;  // sorted, unique
+  bool DependsOnTime(NodeId e) const;          // Time or Extern inside
+  // Times at which `e` may jump: every comparison between t and a constant
+  // (t > 2, t <= 0.5 ...), also floor/ceil/sign/fmod/abs of an affine function
+  // of t where the jump or kink time can be solved for within [t0, t1].
+  std::vector<double> TimeBreakpoints(NodeId e, double t0, double t1) const;
+
+  // Replace Var(i) by replacement[i] where present (used to substitute
+  // prescribed values); returns the simplified result.
+  NodeId Substitute(NodeId e, const std::function<std::optional<NodeId>(int)>& replacement);
+
+  // Readable infix form, variables named by `var_name` (default "x<i>").
+  std::string ToString(NodeId e, const std::function<std::string(int)>& var_name = {}) const;
+
+ private:
+  NodeId Intern(Node n);
+  std::vector<Node> nodes_;
+  // hash table for interning, derivative caches, ... (implementation-defined)
+  struct Impl;
+  std::shared_ptr<Impl> impl_;
+};
+
+// Resolves a name in expression text ("b1.x", "tr1.y", "g") to a node, or
+// returns nullopt if the name is unknown.  "t", "pi" and "e" are built in and
+// never reach the resolver.
+using Resolver = std::function<std::optional<NodeId>(std::string_view name, Pool& pool)>;
+
+// Parses Tcl-expr-like infix text:
+//   numbers (1, 2.5, 1e-3), names ([A-Za-z_][A-Za-z0-9_]* with '.' parts,
+//   e.g. b1.x), + - * / % ** (right assoc), unary - + !, comparisons
+//   < <= > >= == !=, && ||, ?: , parentheses, and calls
+//   sin cos tan asin acos atan atan2 sinh cosh tanh exp log sqrt abs floor
+//   ceil sign min max fmod hypot pow.
+// Throws ParseError with the offset of the problem (unknown name, bad token,
+// unbalanced parenthesis, wrong argument count, trailing text, empty text).
+NodeId Parse(std::string_view text, Pool& pool, const Resolver& resolve);
+
+// Values of external functions (trajectory components) at time t.
+using ExternFn = std::function<double(int fn, int order, double t)>;
+
+// A straight-line program evaluating several output expressions at once;
+// shared subexpressions are computed once.
+//   Evaluate(t, x, out, ext): x[i] is the value of Var(i) (the caller owns a
+//   value array covering every variable the outputs use); out receives one
+//   value per output in the order given to Compile.
+class Tape {
+ public:
+  static Tape Compile(const Pool& pool, std::span<const NodeId> outputs);
+
+  void Evaluate(double t, const double* x, double* out, const ExternFn* ext = nullptr) const;
+
+  size_t instruction_count() const { return code_.size(); }
+  size_t output_count() const { return outputs_.size(); }
+
+ private:
+  struct Instr {
+    Op op;
+    int32_t a = 0, b = 0, c = 0;  // register operands / var index / fn
+    int32_t order = 0;
+    double value = 0.0;
+    int32_t n = 0;                // for n-ary ops: count of operands in operand list
+    int32_t first = 0;            // index into operands_
+  };
+  std::vector<Instr> code_;
+  std::vector<int32_t> operands_;
+  std::vector<int32_t> outputs_;  // register per output
+  mutable std::vector<double> regs_;
+};
+
+}  // namespace asgard::expr

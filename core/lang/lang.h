@@ -1,0 +1,46 @@
+// The scene language: Tcl 8.6 with Asgard's element commands.
+//
+//   scene text ──Evaluate──▶ scene::Scene (elements + diagnostics)
+//
+// Each evaluation creates a fresh Tcl interpreter and a *safe* child
+// interpreter (Tcl_CreateSlave(..., isSafe=1)) in which the script runs, with
+// a command-count limit and a time limit (Tcl_LimitSetCommands /
+// Tcl_LimitSetTime), so an endless loop ends with a clear error.  The element
+// commands (simulator shape_set body link force torque trajectory lightsource
+// view, and `instance` as an alias of `body`, `index` as the old name of
+// lindex) are aliases into the parent, implemented in C++.
+//
+// Source tracking: before evaluation the text is split into top-level
+// commands with Tcl_ParseCommand, recording each command's and each word's
+// byte span.  While running, an element command asks `info frame` for the
+// line of the command being executed (and whether it runs in a proc or
+// through eval), then finds its own command span; it counts how many times the
+// command at that span ran.  Option words are matched to their source words
+// so that literal numbers and vectors can be rewritten in place later.
+//
+// Errors never throw: every problem becomes a scene::Diagnostic with a line
+// and column, the element that failed is skipped, and the rest of the script
+// still runs where Tcl allows (an error in an element command is caught and
+// recorded; evaluation continues with the next top-level command).
+#pragma once
+
+#include <string>
+#include <string_view>
+
+#include "core/scene/scene.h"
+
+namespace asgard::lang {
+
+struct EvalLimits {
+  long command_limit = 5'000'000;  // Tcl commands per evaluation
+  int time_limit_ms = 5000;        // wall-clock time per evaluation
+};
+
+// Evaluates `text` and returns the scene.  `filename` is used only in
+// messages.  Never throws.
+scene::Scene Evaluate(std::string_view text, const EvalLimits& limits = {});
+
+// Formats a diagnostic as "FILE:LINE:COL: error: message".
+std::string FormatDiagnostic(std::string_view filename, const scene::Diagnostic& d);
+
+}  // namespace asgard::lang
