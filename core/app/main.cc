@@ -1,0 +1,378 @@
+// asgard: the command-line front end.
+//
+//   asgard check FILE
+//   asgard simulate FILE [--until T] [--rtol R] [--atol A] [--out FILE.csv|FILE.json]
+//                        [--stats] [--method auto|tr|trbdf2] [--single] [--sequential]
+//
+// Exit status: 0 success, 1 scene errors or solver failure, 2 usage errors.
+#include <unistd.h>
+
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <iomanip>
+#include <iostream>
+#include <nlohmann/json.hpp>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "core/app/pipeline.h"
+#include "core/lang/lang.h"
+
+namespace {
+
+using asgard::app::Frames;
+
+constexpr const char* kMainHelp = R"(asgard — physically-based 3D animation: simulate Asgard scene scripts
+
+Usage:
+  asgard check FILE            check a scene for errors
+  asgard simulate FILE [...]   simulate a scene and write its trajectories
+  asgard help [COMMAND]        show help (also: asgard COMMAND --help)
+
+Scene scripts are Tcl with Asgard's element commands; see docs/language.md.
+)";
+
+constexpr const char* kCheckHelp = R"(Usage: asgard check FILE
+
+Evaluates the scene script FILE and forms its equations without simulating.
+Each problem is printed as FILE:LINE:COL: error: message.
+Exit status 0 when the scene has no errors, 1 otherwise.
+)";
+
+constexpr const char* kSimulateHelp = R"(Usage: asgard simulate FILE [options]
+
+Simulates the scene script FILE and prints a summary.
+
+Options:
+  --until T         simulate to time T (default: the scene's simulator -finish)
+  --rtol R          relative tolerance (default 1e-6, or the scene's -rtol)
+  --atol A          absolute tolerance (default 1e-9, or the scene's -atol)
+  --out FILE        write body trajectories sampled at the frame rate
+                    (simulator -frames, default 30 per second): .csv or .json
+  --stats           print the components (their variables) and solver counters
+  --method M        auto (default: trapezoidal, TR-BDF2 where stiff), tr, trbdf2
+  --single          solve all equations as one component (no partitioning)
+  --sequential      run components to completion one after another
+                    (no event-driven scheduling)
+  --quiet           no summary
+  -h, --help        this help
+
+Exit status 0 on success, 1 on scene errors or solver failure, 2 on bad usage.
+)";
+
+int Usage(const std::string& message, const char* help) {
+  std::cerr << "asgard: " << message << "\n\n" << help;
+  return 2;
+}
+
+bool ReadFile(const std::string& path, std::string& text) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) return false;
+  std::ostringstream ss;
+  ss << in.rdbuf();
+  text = ss.str();
+  return true;
+}
+
+bool ParseDouble(const std::string& s, double& out) {
+  char* end = nullptr;
+  out = std::strtod(s.c_str(), &end);
+  return !s.empty() && end && *end == '\0' && std::isfinite(out);
+}
+
+void PrintDiagnostics(const std::string& file, const std::vector<asgard::scene::Diagnostic>& ds) {
+  for (const auto& d : ds) std::cerr << asgard::lang::FormatDiagnostic(file, d) << "\n";
+}
+
+class ProgressBar {
+ public:
+  ProgressBar(double t0, double t1, bool enabled) : t0_(t0), t1_(t1), enabled_(enabled) {}
+  void operator()(double t) {
+    if (!enabled_) return;
+    const int width = 40;
+    const double frac = t1_ > t0_ ? std::clamp((t - t0_) / (t1_ - t0_), 0.0, 1.0) : 1.0;
+    const int filled = static_cast<int>(frac * width);
+    if (filled == last_ && frac < 1.0) return;
+    last_ = filled;
+    std::fprintf(stderr, "\r[%s%s] %5.1f%%  t = %.4g", std::string(filled, '#').c_str(),
+                 std::string(width - filled, '.').c_str(), 100 * frac, t);
+    if (frac >= 1.0) std::fprintf(stderr, "\n");
+    std::fflush(stderr);
+  }
+
+ private:
+  double t0_, t1_;
+  bool enabled_;
+  int last_ = -1;
+};
+
+constexpr const char* kFields[] = {"x",  "y",  "z",  "qw", "qx", "qy", "qz",
+                                   "dx", "dy", "dz", "wx", "wy", "wz"};
+
+void BodyValues(const asgard::app::BodyFrame& f, double out[13]) {
+  for (int a = 0; a < 3; ++a) out[a] = f.p[a];
+  for (int a = 0; a < 4; ++a) out[3 + a] = f.q[a];
+  for (int a = 0; a < 3; ++a) out[7 + a] = f.v[a];
+  for (int a = 0; a < 3; ++a) out[10 + a] = f.w[a];
+}
+
+bool WriteCsv(const std::string& path, const Frames& frames) {
+  std::ofstream out(path);
+  if (!out) return false;
+  out << "t";
+  for (const auto& b : frames.bodies)
+    for (const char* f : kFields) out << "," << b << "." << f;
+  out << "\n" << std::setprecision(17);
+  for (size_t k = 0; k < frames.times.size(); ++k) {
+    out << frames.times[k];
+    for (const auto& bf : frames.states[k]) {
+      double v[13];
+      BodyValues(bf, v);
+      for (double x : v) out << "," << x;
+    }
+    out << "\n";
+  }
+  return static_cast<bool>(out);
+}
+
+nlohmann::json CountersJson(const asgard::solver::Counters& c) {
+  return {{"steps", c.steps},
+          {"rejected_steps", c.rejected_steps},
+          {"trbdf2_steps", c.trbdf2_steps},
+          {"rhs_evaluations", c.rhs_evaluations},
+          {"jacobian_evaluations", c.jacobian_evaluations},
+          {"factorizations", c.factorizations},
+          {"newton_iterations", c.newton_iterations},
+          {"newton_failures", c.newton_failures},
+          {"truncated_steps", c.truncated_steps},
+          {"restarts", c.restarts}};
+}
+
+bool WriteJson(const std::string& path, const std::string& scene_file, const Frames& frames,
+               const asgard::app::Run& run) {
+  nlohmann::json j;
+  j["scene"] = scene_file;
+  j["t0"] = run.equations->t0;
+  j["t1"] = run.equations->t1;
+  j["times"] = frames.times;
+  j["bodies"] = nlohmann::json::array();
+  for (size_t b = 0; b < frames.bodies.size(); ++b) {
+    nlohmann::json body;
+    body["name"] = frames.bodies[b];
+    body["static"] = run.equations->bodies[b].is_static;
+    for (int f = 0; f < 13; ++f) {
+      std::vector<double> series;
+      for (size_t k = 0; k < frames.times.size(); ++k) {
+        double v[13];
+        BodyValues(frames.states[k][b], v);
+        series.push_back(v[f]);
+      }
+      body[kFields[f]] = series;
+    }
+    j["bodies"].push_back(body);
+  }
+  j["counters"] = CountersJson(run.simulation->totals());
+  j["components"] = run.simulation->component_count();
+  std::ofstream out(path);
+  if (!out) return false;
+  out << j.dump(1) << "\n";
+  return static_cast<bool>(out);
+}
+
+void PrintCounters(std::ostream& out, const asgard::solver::Counters& c) {
+  out << "  steps " << c.steps << " (rejected " << c.rejected_steps << ", TR-BDF2 " << c.trbdf2_steps
+      << "), rhs evaluations " << c.rhs_evaluations << ", jacobians " << c.jacobian_evaluations
+      << ", factorizations " << c.factorizations << ", newton iterations " << c.newton_iterations
+      << " (failures " << c.newton_failures << "), truncated steps " << c.truncated_steps
+      << ", restarts " << c.restarts << "\n";
+}
+
+void PrintStats(const asgard::app::Run& run) {
+  const auto& sim = *run.simulation;
+  const auto& eq = *run.equations;
+  std::cout << "components: " << sim.component_count() << "\n";
+  for (int c = 0; c < sim.component_count(); ++c) {
+    const auto& comp = sim.component(c);
+    std::cout << "  [" << c << "] {";
+    const auto& vars = comp.variables();
+    for (size_t j = 0; j < vars.size(); ++j) {
+      if (j == 12 && vars.size() > 16) {
+        std::cout << " ... " << vars.size() - 13 << " more ...";
+        j = vars.size() - 1;
+      }
+      std::cout << (j ? " " : "") << eq.variables[vars[j]].name;
+    }
+    std::cout << "}";
+    const auto& up = sim.partition().upstream[c];
+    if (!up.empty()) {
+      std::cout << " reads";
+      for (int u : up) std::cout << " [" << u << "]";
+    }
+    const auto& k = comp.counters();
+    std::cout << "  steps " << k.steps << " rejected " << k.rejected_steps << " rhs "
+              << k.rhs_evaluations << " jac " << k.jacobian_evaluations << " lu "
+              << k.factorizations << " newton " << k.newton_iterations << "\n";
+  }
+  std::cout << "totals:\n";
+  PrintCounters(std::cout, sim.totals());
+}
+
+int Check(const std::vector<std::string>& args) {
+  std::string file;
+  for (const auto& a : args) {
+    if (a == "-h" || a == "--help") {
+      std::cout << kCheckHelp;
+      return 0;
+    }
+    if (!a.empty() && a[0] == '-') return Usage("check: unknown option '" + a + "'", kCheckHelp);
+    if (!file.empty()) return Usage("check: only one FILE is accepted", kCheckHelp);
+    file = a;
+  }
+  if (file.empty()) return Usage("check: FILE is required", kCheckHelp);
+  std::string text;
+  if (!ReadFile(file, text)) {
+    std::cerr << "asgard: cannot read '" << file << "'\n";
+    return 1;
+  }
+  auto run = asgard::app::Check(text);
+  PrintDiagnostics(file, run.diagnostics);
+  if (!run.ok) return 1;
+  std::cout << file << ": ok (" << run.scene.bodies.size() << " bodies, "
+            << run.equations->variables.size() << " state variables)\n";
+  return 0;
+}
+
+int Simulate(const std::vector<std::string>& args) {
+  std::string file, out_path;
+  bool stats = false, quiet = false;
+  asgard::app::RunOptions opts;
+  std::optional<double> rtol, atol;
+  for (size_t i = 0; i < args.size(); ++i) {
+    const std::string& a = args[i];
+    auto value = [&](const char* name) -> std::optional<std::string> {
+      if (i + 1 >= args.size()) return std::nullopt;
+      (void)name;
+      return args[++i];
+    };
+    if (a == "-h" || a == "--help") {
+      std::cout << kSimulateHelp;
+      return 0;
+    } else if (a == "--until" || a == "--rtol" || a == "--atol") {
+      auto v = value(a.c_str());
+      double d;
+      if (!v || !ParseDouble(*v, d)) return Usage(a + " needs a number", kSimulateHelp);
+      if (a == "--until") opts.until = d;
+      else if (d <= 0) return Usage(a + " must be positive", kSimulateHelp);
+      else if (a == "--rtol") rtol = d;
+      else atol = d;
+    } else if (a == "--out") {
+      auto v = value("--out");
+      if (!v) return Usage("--out needs a file name", kSimulateHelp);
+      out_path = *v;
+      if (!out_path.ends_with(".csv") && !out_path.ends_with(".json"))
+        return Usage("--out: the file name must end in .csv or .json", kSimulateHelp);
+    } else if (a == "--method") {
+      auto v = value("--method");
+      if (v == "auto") opts.solver.method = asgard::solver::SolverOptions::Method::kAuto;
+      else if (v == "tr") opts.solver.method = asgard::solver::SolverOptions::Method::kTrapezoidal;
+      else if (v == "trbdf2") opts.solver.method = asgard::solver::SolverOptions::Method::kTrBdf2;
+      else return Usage("--method must be auto, tr or trbdf2", kSimulateHelp);
+    } else if (a == "--stats") {
+      stats = true;
+    } else if (a == "--quiet") {
+      quiet = true;
+    } else if (a == "--single") {
+      opts.solver.partition = false;
+    } else if (a == "--sequential") {
+      opts.solver.schedule = asgard::solver::SolverOptions::Schedule::kSequential;
+    } else if (!a.empty() && a[0] == '-') {
+      return Usage("simulate: unknown option '" + a + "'", kSimulateHelp);
+    } else if (!file.empty()) {
+      return Usage("simulate: only one FILE is accepted", kSimulateHelp);
+    } else {
+      file = a;
+    }
+  }
+  if (file.empty()) return Usage("simulate: FILE is required", kSimulateHelp);
+  std::string text;
+  if (!ReadFile(file, text)) {
+    std::cerr << "asgard: cannot read '" << file << "'\n";
+    return 1;
+  }
+  // Command-line tolerances win over the scene's.
+  auto check = asgard::app::Check(text);
+  if (!check.ok) {
+    PrintDiagnostics(file, check.diagnostics);
+    return 1;
+  }
+  const double t0 = check.equations->t0;
+  const double t1 = opts.until.value_or(check.equations->t1);
+  if (!(t1 > t0)) {
+    std::cerr << "asgard: --until must be after the start time " << t0 << "\n";
+    return 2;
+  }
+  ProgressBar bar(t0, t1, isatty(STDERR_FILENO) && !quiet);
+  opts.progress = [&bar](double t) { bar(t); };
+  if (rtol || atol) {
+    opts.use_scene_tolerances = false;
+    opts.solver.rtol = rtol.value_or(opts.solver.rtol);
+    opts.solver.atol = atol.value_or(opts.solver.atol);
+  }
+  auto run = asgard::app::Simulate(text, opts);
+  PrintDiagnostics(file, run.diagnostics);
+  if (!run.solver_error.empty()) std::cerr << "asgard: " << file << ": " << run.solver_error << "\n";
+  if (!run.ok) return 1;
+  const double rate = run.scene.simulator ? run.scene.simulator->frame_rate : 30.0;
+  const Frames frames = asgard::app::SampleFrames(*run.equations, *run.simulation, rate);
+  if (!out_path.empty()) {
+    const bool ok = out_path.ends_with(".csv") ? WriteCsv(out_path, frames)
+                                               : WriteJson(out_path, file, frames, run);
+    if (!ok) {
+      std::cerr << "asgard: cannot write '" << out_path << "'\n";
+      return 1;
+    }
+  }
+  if (!quiet) {
+    const auto& eq = *run.equations;
+    const auto totals = run.simulation->totals();
+    std::cout << file << ": simulated t = " << eq.t0 << " .. " << eq.t1 << " in " << std::fixed
+              << std::setprecision(3) << run.seconds << " s" << std::defaultfloat << "\n"
+              << "  " << eq.bodies.size() << " bodies, " << eq.variables.size()
+              << " state variables, " << run.simulation->component_count() << " components, "
+              << totals.steps << " steps\n";
+    std::cout << std::setprecision(6);
+    for (size_t b = 0; b < frames.bodies.size(); ++b) {
+      const auto& last = frames.states.back()[b];
+      std::cout << "  " << frames.bodies[b] << " at t=" << frames.times.back() << ": position ("
+                << last.p[0] << ", " << last.p[1] << ", " << last.p[2] << ") velocity ("
+                << last.v[0] << ", " << last.v[1] << ", " << last.v[2] << ")\n";
+    }
+    if (!out_path.empty())
+      std::cout << "  wrote " << frames.times.size() << " frames to " << out_path << "\n";
+  }
+  if (stats) PrintStats(run);
+  return 0;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  std::vector<std::string> args(argv + 1, argv + argc);
+  if (args.empty()) {
+    std::cerr << kMainHelp;
+    return 2;
+  }
+  const std::string cmd = args[0];
+  args.erase(args.begin());
+  if (cmd == "-h" || cmd == "--help" || cmd == "help") {
+    if (!args.empty() && args[0] == "check") std::cout << kCheckHelp;
+    else if (!args.empty() && args[0] == "simulate") std::cout << kSimulateHelp;
+    else std::cout << kMainHelp;
+    return 0;
+  }
+  if (cmd == "check") return Check(args);
+  if (cmd == "simulate") return Simulate(args);
+  return Usage("unknown command '" + cmd + "'", kMainHelp);
+}

@@ -1,0 +1,57 @@
+// The simulate pipeline shared by the CLI, the tests and the benchmarks:
+//
+//   text ─lang::Evaluate─▶ Scene ─physics::FormEquations─▶ EquationSystem
+//        ─solver::Simulation::Run─▶ waveforms ─SampleFrames─▶ Frames
+#pragma once
+
+#include <memory>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "core/physics/equations.h"
+#include "core/scene/scene.h"
+#include "core/solver/simulation.h"
+
+namespace asgard::app {
+
+// Everything a run produced.  `ok` is false when the scene had errors (see
+// diagnostics) or the solver failed (see solver_error).
+struct Run {
+  scene::Scene scene;
+  std::unique_ptr<physics::EquationSystem> equations;
+  std::unique_ptr<solver::Simulation> simulation;
+  std::vector<scene::Diagnostic> diagnostics;  // scene and equation problems
+  std::string solver_error;
+  double seconds = 0.0;                        // solver wall time
+  bool ok = false;
+};
+
+struct RunOptions {
+  solver::SolverOptions solver;
+  std::optional<double> until;  // overrides the simulator's -finish
+  bool use_scene_tolerances = true;  // simulator -rtol/-atol/-step/-maxstep
+  std::function<void(double)> progress;
+};
+
+// Evaluates, forms equations and (when there are no errors) simulates.
+Run Simulate(std::string_view text, const RunOptions& options = {});
+// Evaluates and forms equations only (no simulation): for `asgard check`.
+Run Check(std::string_view text);
+
+// A body's state at one time, world frame.
+struct BodyFrame {
+  double p[3], q[4], v[3], w[3];
+};
+struct Frames {
+  std::vector<std::string> bodies;
+  std::vector<double> times;
+  std::vector<std::vector<BodyFrame>> states;  // [frame][body]
+};
+// Samples every body at `rate` frames per second from t0 to t1 inclusive.
+Frames SampleFrames(const physics::EquationSystem& eq, const solver::Simulation& sim,
+                    double rate);
+BodyFrame SampleBody(const physics::EquationSystem& eq, const solver::Simulation& sim, int body,
+                     double t);
+
+}  // namespace asgard::app

@@ -1,0 +1,514 @@
+// Component integration: modes, Newton, TR and TR-BDF2 steps, restarts
+// (design note in component.h).
+#include "core/solver/component.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <sstream>
+
+#include "core/physics/equations.h"
+#include "core/solver/simulation.h"
+
+namespace asgard::solver {
+namespace {
+
+const double kGamma = 2.0 - std::sqrt(2.0);
+const double kD = 1.0 - 1.0 / std::sqrt(2.0);  // = γ/2 = (1−γ)/(2−γ)
+const double kBdfY = 1.0 / (kGamma * (2.0 - kGamma));
+const double kBdfX = (1.0 - kGamma) * (1.0 - kGamma) / (kGamma * (2.0 - kGamma));
+const double kErrC = (-3 * kGamma * kGamma + 4 * kGamma - 2) / (12 * (2 - kGamma));
+constexpr double kNewtonTol = 1e-3;
+constexpr int kNewtonMaxIter = 10;
+constexpr double kStiffness = 3.0;
+
+}  // namespace
+
+Counters& Counters::operator+=(const Counters& o) {
+  steps += o.steps;
+  rejected_steps += o.rejected_steps;
+  trbdf2_steps += o.trbdf2_steps;
+  rhs_evaluations += o.rhs_evaluations;
+  jacobian_evaluations += o.jacobian_evaluations;
+  factorizations += o.factorizations;
+  newton_iterations += o.newton_iterations;
+  newton_failures += o.newton_failures;
+  truncated_steps += o.truncated_steps;
+  restarts += o.restarts;
+  return *this;
+}
+
+struct Component::Mode {
+  std::vector<char> prescribed;     // per local variable
+  expr::Tape f_tape;                // n outputs: ẋ (ODE rows) or g (prescribed rows)
+  expr::Tape fj_tape;               // the same followed by the Jacobian entries
+  std::vector<int> jrow, jcol;      // local (row, col) of each Jacobian entry
+  expr::Tape gdot_tape;             // ∂g/∂t for prescribed rows whose g depends on t only
+  std::vector<int> gdot_rows;
+  std::vector<int> mrow, mcol;      // matrix pattern: n diagonal entries, then jrow/jcol
+  std::vector<double> jvals, mvals, out;
+  std::unique_ptr<LinearSolver> solver;
+  double rho = 0.0;                 // ‖J‖∞ over ODE rows
+};
+
+struct Component::Attempt {
+  bool ok = false;
+  bool trbdf2 = false;
+  double err = 0.0;
+};
+
+Component::Component(Simulation& sim, int index, std::vector<int> vars)
+    : sim_(sim), sys_(sim.system()), index_(index), vars_(std::move(vars)),
+      wave_(static_cast<int>(vars_.size())) {
+  const size_t n = vars_.size();
+  for (auto* v : {&x_, &f_, &y_, &fy_, &yg_, &fg_, &c_, &r_, &est_, &rate_, &w_}) v->assign(n, 0.0);
+}
+
+Component::~Component() = default;
+
+bool Component::finished() const {
+  return !wave_.empty() && wave_.t_end() >= sys_.t1 && !PendingRestart();
+}
+
+// ---- setup -----------------------------------------------------------------
+
+void Component::Initialize() {
+  std::vector<int> reads;
+  const auto& pool = sys_.pool;
+  for (int v : vars_) {
+    const auto& sv = sys_.variables[v];
+    auto add = [&](expr::NodeId e) {
+      for (int r : pool.Variables(e)) reads.push_back(r);
+    };
+    add(sv.rhs);
+    for (const auto& o : sv.overrides) add(o.expr);
+    static_breakpoints_.insert(static_breakpoints_.end(), sv.breakpoints.begin(),
+                               sv.breakpoints.end());
+  }
+  std::sort(reads.begin(), reads.end());
+  reads.erase(std::unique(reads.begin(), reads.end()), reads.end());
+  for (int r : reads)
+    if (!std::binary_search(vars_.begin(), vars_.end(), r)) inputs_.push_back(r);
+  // An upstream jump makes our rates jump: land on upstream breakpoints too.
+  for (int u : sim_.partition().upstream[index_]) {
+    const auto& ub = sim_.component(u).static_breakpoints_;
+    static_breakpoints_.insert(static_breakpoints_.end(), ub.begin(), ub.end());
+  }
+  std::sort(static_breakpoints_.begin(), static_breakpoints_.end());
+  static_breakpoints_.erase(std::unique(static_breakpoints_.begin(), static_breakpoints_.end()),
+                            static_breakpoints_.end());
+
+  const size_t n = vars_.size();
+  for (size_t j = 0; j < n; ++j) x_[j] = sys_.variables[vars_[j]].initial;
+  std::vector<double> zero(n, 0.0);
+  wave_.Append(sys_.t0, x_.data(), zero.data(), {0.0, false});
+  Restart();
+  // The restart sample replaces the provisional one.
+  const int last = wave_.size() - 1;
+  std::vector<double> x(wave_.x(last), wave_.x(last) + n), f(wave_.f(last), wave_.f(last) + n);
+  const SampleInfo info = wave_.info(last);
+  wave_.Resize(0);
+  wave_.Append(sys_.t0, x.data(), f.data(), info);
+  counters_.restarts = 0;
+}
+
+// ---- modes -----------------------------------------------------------------
+
+std::string Component::ModeKey(double t) const {
+  std::string key(vars_.size(), '\0');
+  for (size_t j = 0; j < vars_.size(); ++j) {
+    const auto& ov = sys_.variables[vars_[j]].overrides;
+    for (size_t i = 0; i < ov.size(); ++i)
+      if (ov[i].from <= t && t < ov[i].to) key[j] = static_cast<char>(i + 1);
+  }
+  return key;
+}
+
+Component::Mode& Component::ModeAt(double t) {
+  if (last_mode_ && mode_lo_ <= t && t < mode_hi_) return *last_mode_;
+  std::string key = ModeKey(t);
+  // The interval around t where the same overrides are active.
+  mode_lo_ = -std::numeric_limits<double>::infinity();
+  mode_hi_ = std::numeric_limits<double>::infinity();
+  for (int v : vars_)
+    for (const auto& o : sys_.variables[v].overrides)
+      for (double b : {o.from, o.to}) {
+        if (b <= t) mode_lo_ = std::max(mode_lo_, b);
+        else mode_hi_ = std::min(mode_hi_, b);
+      }
+  auto it = modes_.find(key);
+  if (it == modes_.end()) it = modes_.emplace(key, BuildMode(key)).first;
+  last_mode_ = it->second.get();
+  last_key_ = key;
+  return *last_mode_;
+}
+
+std::unique_ptr<Component::Mode> Component::BuildMode(const std::string& key) {
+  auto m = std::make_unique<Mode>();
+  auto& pool = const_cast<expr::Pool&>(sys_.pool);  // derivatives extend the pool
+  const int n = static_cast<int>(vars_.size());
+  m->prescribed.assign(n, 0);
+  std::vector<expr::NodeId> outputs(n);
+  std::vector<expr::NodeId> gdots;
+  for (int j = 0; j < n; ++j) {
+    const auto& sv = sys_.variables[vars_[j]];
+    outputs[j] = sv.rhs;
+    if (key[j] != 0) {
+      const physics::Override& o = sv.overrides[key[j] - 1];
+      outputs[j] = o.expr;
+      if (o.kind == physics::Override::Kind::kValue) {
+        m->prescribed[j] = 1;
+        if (pool.Variables(o.expr).empty()) {
+          m->gdot_rows.push_back(j);
+          gdots.push_back(pool.TimeDerivative(o.expr));
+        }
+      }
+    }
+  }
+  std::vector<expr::NodeId> all = outputs;
+  for (int j = 0; j < n; ++j) {
+    for (int v : pool.Variables(outputs[j])) {
+      auto it = std::lower_bound(vars_.begin(), vars_.end(), v);
+      if (it == vars_.end() || *it != v) continue;
+      const expr::NodeId d = pool.Derivative(outputs[j], v);
+      if (pool.IsConst(d) && *pool.ConstValue(d) == 0.0) continue;
+      m->jrow.push_back(j);
+      m->jcol.push_back(static_cast<int>(it - vars_.begin()));
+      all.push_back(d);
+    }
+  }
+  m->f_tape = expr::Tape::Compile(pool, outputs);
+  m->fj_tape = expr::Tape::Compile(pool, all);
+  m->gdot_tape = expr::Tape::Compile(pool, gdots);
+  for (int j = 0; j < n; ++j) {
+    m->mrow.push_back(j);
+    m->mcol.push_back(j);
+  }
+  m->mrow.insert(m->mrow.end(), m->jrow.begin(), m->jrow.end());
+  m->mcol.insert(m->mcol.end(), m->jcol.begin(), m->jcol.end());
+  m->jvals.assign(m->jrow.size(), 0.0);
+  m->mvals.assign(m->mrow.size(), 0.0);
+  m->out.assign(all.size(), 0.0);
+  m->solver = LinearSolver::Create(n, m->mrow, m->mcol, sim_.options().dense_limit);
+  return m;
+}
+
+// ---- evaluation --------------------------------------------------------------
+
+void Component::Load(double t, const double* y, Side side) {
+  double* xg = sim_.values();
+  for (size_t j = 0; j < vars_.size(); ++j) xg[vars_[j]] = y[j];
+  for (int i : inputs_) xg[i] = sim_.InputValue(i, t, side);
+}
+
+void Component::EvalF(const Mode& m, double t, const double* y, double* out, Side side,
+                      bool landing) {
+  Load(t, y, side);
+  double te = t;
+  if (landing) te = std::nextafter(t, -std::numeric_limits<double>::infinity());
+  if (side == Side::kRight) te = std::nextafter(t, std::numeric_limits<double>::infinity());
+  const expr::ExternFn& ext = sim_.externs();
+  m.f_tape.Evaluate(te, sim_.values(), out, &ext);
+  ++counters_.rhs_evaluations;
+}
+
+void Component::EvalJacobian(Mode& m, double t, const double* y) {
+  Load(t, y, Side::kRight);
+  const expr::ExternFn& ext = sim_.externs();
+  m.fj_tape.Evaluate(t, sim_.values(), m.out.data(), &ext);
+  ++counters_.jacobian_evaluations;
+  const size_t n = vars_.size();
+  std::vector<double> rowsum(n, 0.0);
+  for (size_t k = 0; k < m.jrow.size(); ++k) {
+    m.jvals[k] = m.out[n + k];
+    rowsum[m.jrow[k]] += std::abs(m.jvals[k]);
+  }
+  m.rho = 0.0;
+  for (size_t j = 0; j < n; ++j)
+    if (!m.prescribed[j]) m.rho = std::max(m.rho, rowsum[j]);
+  factored_a_ = -1;
+}
+
+bool Component::FactorMatrix(Mode& m, double a) {
+  if (factored_a_ == a) return true;
+  const size_t n = vars_.size();
+  for (size_t j = 0; j < n; ++j) m.mvals[j] = 1.0;
+  for (size_t k = 0; k < m.jrow.size(); ++k) {
+    const double scale = m.prescribed[m.jrow[k]] ? 1.0 : a;
+    m.mvals[n + k] = -scale * m.jvals[k];
+  }
+  ++counters_.factorizations;
+  if (!m.solver->Factor(m.mvals.data())) {
+    factored_a_ = -1;
+    return false;
+  }
+  factored_a_ = a;
+  return true;
+}
+
+double Component::WeightedNorm(const double* v, const double* x, const double* y) const {
+  const SolverOptions& o = sim_.options();
+  double norm = 0.0;
+  for (size_t j = 0; j < vars_.size(); ++j) {
+    const double w = o.atol + o.rtol * std::max(std::abs(x[j]), std::abs(y[j]));
+    norm = std::max(norm, std::abs(v[j]) / w);
+  }
+  return std::isnan(norm) ? std::numeric_limits<double>::infinity() : norm;
+}
+
+// Solves y − c − a f(t, y) = 0 (ODE rows) and y − g(t, y) = 0 (prescribed
+// rows) by Newton's method with the factored matrix.  On success y and fy
+// (tape outputs at y) are consistent.
+bool Component::Newton(Mode& m, double t_new, double a, const double* c, double* y, double* fy,
+                       bool landing) {
+  const size_t n = vars_.size();
+  const double* x = wave_.x(wave_.size() - 1);
+  double prev = std::numeric_limits<double>::infinity();
+  for (int it = 0; it < kNewtonMaxIter; ++it) {
+    EvalF(m, t_new, y, fy, Side::kLeft, landing);
+    ++counters_.newton_iterations;
+    for (size_t j = 0; j < n; ++j)
+      r_[j] = m.prescribed[j] ? fy[j] - y[j] : c[j] + a * fy[j] - y[j];
+    m.solver->Solve(r_.data());
+    for (size_t j = 0; j < n; ++j) y[j] += r_[j];
+    const double norm = WeightedNorm(r_.data(), x, y);
+    if (!std::isfinite(norm) || (it >= 2 && norm > 0.9 * prev)) break;
+    prev = norm;
+    if (norm <= kNewtonTol) {
+      EvalF(m, t_new, y, fy, Side::kLeft, landing);
+      return std::all_of(fy, fy + n, [](double v) { return std::isfinite(v); });
+    }
+  }
+  ++counters_.newton_failures;
+  return false;
+}
+
+// Rates stored with a sample: ẋ for ODE rows, dg/dt for prescribed rows
+// (exact when g depends on t only, else the secant over the step).
+void Component::Rates(const Mode& m, double t, const double* y, const double* fy,
+                      const double* y0, double h, double* rate, Side side) {
+  const size_t n = vars_.size();
+  for (size_t j = 0; j < n; ++j) {
+    if (!m.prescribed[j]) rate[j] = fy[j];
+    else rate[j] = h > 0 ? (y[j] - y0[j]) / h : 0.0;
+  }
+  if (m.gdot_rows.empty()) return;
+  std::vector<double> g(m.gdot_rows.size());
+  double te = side == Side::kRight ? std::nextafter(t, std::numeric_limits<double>::infinity()) : t;
+  const expr::ExternFn& ext = sim_.externs();
+  m.gdot_tape.Evaluate(te, sim_.values(), g.data(), &ext);
+  for (size_t i = 0; i < m.gdot_rows.size(); ++i) rate[m.gdot_rows[i]] = g[i];
+}
+
+// ---- stepping ----------------------------------------------------------------
+
+bool Component::TryStep(double h, bool landing, Attempt& out) {
+  const int k = wave_.size() - 1;
+  const size_t n = vars_.size();
+  const double t = wave_.time(k);
+  const double* x = wave_.x(k);
+  const double* f = wave_.f(k);
+  Mode& m = ModeAt(t);
+  if (jac_sample_ != k || jac_mode_ != &m) {
+    EvalJacobian(m, t, x);
+    jac_sample_ = k;
+    jac_mode_ = &m;
+  }
+  const bool history = k >= 1 && !wave_.info(k).restart;
+  const SolverOptions::Method method = sim_.options().method;
+  out.trbdf2 = method == SolverOptions::Method::kTrBdf2 ||
+               (method == SolverOptions::Method::kAuto && (!history || h * m.rho > kStiffness)) ||
+               !history;
+  out.ok = false;
+  if (!out.trbdf2) {
+    const double a = 0.5 * h;
+    if (!FactorMatrix(m, a)) return false;
+    const double* fp = wave_.f(k - 1);
+    const double hp = t - wave_.time(k - 1);
+    for (size_t j = 0; j < n; ++j) {
+      c_[j] = x[j] + a * f[j];
+      y_[j] = x[j] + h * f[j] + 0.5 * h * h * (f[j] - fp[j]) / hp;
+    }
+    if (!Newton(m, t + h, a, c_.data(), y_.data(), fy_.data(), landing)) return false;
+    for (size_t j = 0; j < n; ++j) {
+      if (m.prescribed[j]) {
+        est_[j] = 0.0;
+        continue;
+      }
+      const double dd1 = (fy_[j] - f[j]) / h;
+      const double dd0 = (f[j] - fp[j]) / hp;
+      est_[j] = h * h * h / 6.0 * (dd1 - dd0) / (h + hp);
+    }
+  } else {
+    const double a = kD * h;
+    if (!FactorMatrix(m, a)) return false;
+    for (size_t j = 0; j < n; ++j) {
+      c_[j] = x[j] + a * f[j];
+      yg_[j] = x[j] + kGamma * h * f[j];
+    }
+    if (!Newton(m, t + kGamma * h, a, c_.data(), yg_.data(), fg_.data(), false)) return false;
+    for (size_t j = 0; j < n; ++j) {
+      c_[j] = kBdfY * yg_[j] - kBdfX * x[j];
+      y_[j] = m.prescribed[j] ? fg_[j] : yg_[j] + (1 - kGamma) * h * fg_[j];
+    }
+    if (!Newton(m, t + h, a, c_.data(), y_.data(), fy_.data(), landing)) return false;
+    for (size_t j = 0; j < n; ++j) {
+      est_[j] = m.prescribed[j] ? 0.0
+                                : 2 * kErrC * h *
+                                      (f[j] / kGamma - fg_[j] / (kGamma * (1 - kGamma)) +
+                                       fy_[j] / (1 - kGamma));
+    }
+    m.solver->Solve(est_.data());
+    for (size_t j = 0; j < n; ++j)
+      if (m.prescribed[j]) est_[j] = 0.0;
+  }
+  out.err = WeightedNorm(est_.data(), x, y_.data());
+  Rates(m, t + h, y_.data(), fy_.data(), x, h, rate_.data(), Side::kLeft);
+  out.ok = true;
+  return true;
+}
+
+namespace {
+struct Plan {
+  double t_end;
+  bool landing;
+};
+}  // namespace
+
+static Plan PlanStep(double t, double h, double bp, double t1) {
+  const double lim = std::min(bp, t1);
+  // Do not leave a sliver before the limit: stretch up to 1% to reach it.
+  if (t + 1.01 * h >= lim) return {lim, lim == bp};
+  return {t + h, false};
+}
+
+double Component::NextEnd() const {
+  const double t = wave_.t_end();
+  const double h = PendingRestart() ? sim_.restart_step() : wave_.info(wave_.size() - 1).h_next;
+  return PlanStep(t, h, NextBreakpoint(t), sys_.t1).t_end;
+}
+
+bool Component::Step() {
+  if (PendingRestart()) Restart();
+  if (finished()) return true;
+  const int k = wave_.size() - 1;
+  const double t = wave_.time(k);
+  const SolverOptions& o = sim_.options();
+  const double span = sys_.t1 - sys_.t0;
+  const double h_max = o.max_step > 0 ? o.max_step : span;
+  const double h_min = std::max(1e-13 * span, 8 * std::numeric_limits<double>::epsilon() *
+                                                  std::abs(t));
+  double h = std::min(wave_.info(k).h_next, h_max);
+  bool rejected = false;
+  for (;;) {
+    const Plan plan = PlanStep(t, h, NextBreakpoint(t), sys_.t1);
+    const double h_eff = plan.t_end - t;
+    Attempt att;
+    const bool ok = TryStep(h_eff, plan.landing, att);
+    if (ok && att.err <= 1.0) {
+      const double grow = rejected ? 1.0 : 5.0;
+      const double factor =
+          att.err > 0 ? std::clamp(0.9 * std::cbrt(1.0 / att.err), 0.2, grow) : grow;
+      wave_.Append(plan.t_end, y_.data(), rate_.data(), {std::min(h_eff * factor, h_max), false});
+      ++counters_.steps;
+      if (att.trbdf2) ++counters_.trbdf2_steps;
+      jac_sample_ = -1;
+      if (plan.landing) Restart();
+      return true;
+    }
+    ++counters_.rejected_steps;
+    rejected = true;
+    h = ok ? h_eff * std::max(0.2, 0.9 * std::cbrt(1.0 / att.err)) : h_eff * 0.25;
+    if (!(h >= h_min)) {
+      std::ostringstream msg;
+      msg << "component " << index_ << " (" << Describe() << ") failed at t=" << t << ": "
+          << (ok ? "error estimate stays above tolerance" : "Newton iteration does not converge")
+          << " even with step " << h_eff;
+      error_ = msg.str();
+      return false;
+    }
+  }
+}
+
+// Starts afresh at the last sample's time: applies jumps and prescribed
+// values, evaluates right-hand-limit rates, and appends a restart sample.
+void Component::Restart() {
+  const int k = wave_.size() - 1;
+  const double t = wave_.time(k);
+  const size_t n = vars_.size();
+  std::copy(wave_.x(k), wave_.x(k) + n, y_.begin());
+  for (const Jump& j : jumps_)
+    if (j.t == t) y_[j.local] = j.value;
+  Mode& m = ModeAt(t);
+  for (int pass = 0; pass < 2; ++pass) {
+    EvalF(m, t, y_.data(), fy_.data(), Side::kRight, false);
+    for (size_t j = 0; j < n; ++j)
+      if (m.prescribed[j]) y_[j] = fy_[j];
+  }
+  EvalF(m, t, y_.data(), fy_.data(), Side::kRight, false);
+  Rates(m, t, y_.data(), fy_.data(), y_.data(), 0.0, rate_.data(), Side::kRight);
+  wave_.Append(t, y_.data(), rate_.data(), {sim_.restart_step(), true});
+  ++counters_.restarts;
+  jac_sample_ = -1;
+}
+
+bool Component::IsBreakpoint(double t) const {
+  if (std::binary_search(static_breakpoints_.begin(), static_breakpoints_.end(), t)) return true;
+  if (std::binary_search(dynamic_breakpoints_.begin(), dynamic_breakpoints_.end(), t)) return true;
+  return false;
+}
+
+bool Component::PendingRestart() const {
+  if (wave_.empty()) return false;
+  const int k = wave_.size() - 1;
+  return !wave_.info(k).restart && IsBreakpoint(wave_.time(k));
+}
+
+double Component::NextBreakpoint(double t) const {
+  double best = std::numeric_limits<double>::infinity();
+  auto it = std::upper_bound(static_breakpoints_.begin(), static_breakpoints_.end(), t);
+  if (it != static_breakpoints_.end()) best = *it;
+  auto jt = std::upper_bound(dynamic_breakpoints_.begin(), dynamic_breakpoints_.end(), t);
+  if (jt != dynamic_breakpoints_.end()) best = std::min(best, *jt);
+  return best;
+}
+
+// ---- truncation and events -----------------------------------------------------
+
+double Component::Truncate(double t) {
+  const int keep = wave_.KeepIndex(t);
+  const int removed = wave_.size() - 1 - keep;
+  if (removed > 0) {
+    counters_.truncated_steps += removed;
+    wave_.Resize(keep + 1);
+  }
+  jac_sample_ = -1;
+  return wave_.t_end();
+}
+
+void Component::AddBreakpoint(double t) {
+  auto it = std::lower_bound(dynamic_breakpoints_.begin(), dynamic_breakpoints_.end(), t);
+  if (it == dynamic_breakpoints_.end() || *it != t) dynamic_breakpoints_.insert(it, t);
+}
+
+void Component::AddJump(double t, int local, double value) {
+  AddBreakpoint(t);
+  jumps_.push_back({t, local, value});
+}
+
+void Component::ForgetAfter(double t) {
+  std::erase_if(dynamic_breakpoints_, [t](double b) { return b > t; });
+  std::erase_if(jumps_, [t](const Jump& j) { return j.t > t; });
+}
+
+std::string Component::Describe() const {
+  std::string s;
+  for (size_t j = 0; j < vars_.size() && j < 6; ++j) {
+    if (j) s += ", ";
+    s += sys_.variables[vars_[j]].name;
+  }
+  if (vars_.size() > 6) s += ", ... (" + std::to_string(vars_.size()) + " variables)";
+  return s;
+}
+
+}  // namespace asgard::solver

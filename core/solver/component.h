@@ -1,0 +1,173 @@
+// A component: one strongly connected block of state equations, integrated
+// with its own adaptive step (seed 5.2, 5.2.1).
+//
+// Method (per step, chosen automatically):
+//
+//   trapezoidal rule (TR)     y = x + h/2 (f(x) + f(y))          the seed's rule
+//   TR-BDF2, γ = 2 − √2       y_γ = x + γh/2 (f(x) + f(y_γ))       TR stage
+//                             y = (y_γ − (1−γ)² x)/(γ(2−γ)) + d h f(y)   BDF2
+//                             with d = (1−γ)/(2−γ) = γ/2, so both stages
+//                             use the same matrix I − d h J
+//
+//   TR is A-stable but its amplification tends to −1 for h|λ| → ∞: a stiff,
+//   critically damped link then rings instead of settling.  TR-BDF2 is
+//   L-stable (amplification → 0).  A step uses TR-BDF2 when h‖J‖∞ > 3 (stiff
+//   for this step size) or when there is no step history (first step, after
+//   a breakpoint or a collision); otherwise TR.
+//
+// Newton: the iteration matrix M = I − a J is built from the symbolic
+// Jacobian at the start of the step and factored once per step size (dense LU
+// or KLU, see linear_solver.h); iterations stop when the weighted update is
+// below 10⁻³ of the tolerance.
+//
+// Error control: weights w = atol + rtol·max(|x|, |y|), max norm.
+//   TR:      LTE ≈ h³/6 · f[t₋₁, t₀, t₁]   (second divided difference of f)
+//   TR-BDF2: LTE ≈ 2Ch (f₀/γ − f_γ/(γ(1−γ)) + f₁/(1−γ)), C = (−3γ²+4γ−2)/(12(2−γ)),
+//            filtered through M⁻¹ (Hosea & Shampine 1996) so stiff modes
+//            that have decayed do not hold the step down.
+//   h_next = h · clamp(0.9 err^(−1/3), 0.2, 5).
+//
+// Breakpoints (trajectory interval ends, t compared with constants, knots,
+// collisions): a step never crosses one; it lands on it exactly, and the
+// component restarts there with a new sample holding the right-hand limits.
+//
+// Modes: while a trajectory prescribes a variable (seed 5.1.3) its row is
+// x = g(t, ...) instead of ẋ = f; the set of active rows is the component's
+// mode, constant between breakpoints.  Tapes and factorizations are cached
+// per mode.
+#pragma once
+
+#include <map>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "core/expr/expr.h"
+#include "core/solver/linear_solver.h"
+#include "core/solver/waveform.h"
+
+namespace asgard::physics {
+struct EquationSystem;
+}
+
+namespace asgard::solver {
+
+struct SolverOptions {
+  double rtol = 1e-6;
+  double atol = 1e-9;
+  double initial_step = 0.0;  // 0: 1e-4 of the interval
+  double max_step = 0.0;      // 0: the whole interval
+  bool partition = true;      // false: one component for everything
+  enum class Schedule : uint8_t { kEventDriven, kSequential };
+  Schedule schedule = Schedule::kEventDriven;
+  enum class Method : uint8_t { kAuto, kTrapezoidal, kTrBdf2 };
+  Method method = Method::kAuto;
+  int dense_limit = 40;       // larger components use KLU
+};
+
+struct Counters {
+  long steps = 0;
+  long rejected_steps = 0;
+  long trbdf2_steps = 0;
+  long rhs_evaluations = 0;
+  long jacobian_evaluations = 0;
+  long factorizations = 0;
+  long newton_iterations = 0;
+  long newton_failures = 0;
+  long truncated_steps = 0;
+  long restarts = 0;
+
+  Counters& operator+=(const Counters& o);
+};
+
+class Simulation;
+
+class Component {
+ public:
+  Component(Simulation& sim, int index, std::vector<int> vars);
+  ~Component();
+  Component(const Component&) = delete;
+  Component& operator=(const Component&) = delete;
+
+  int index() const { return index_; }
+  const std::vector<int>& variables() const { return vars_; }
+  const std::vector<int>& inputs() const { return inputs_; }
+  const Waveform& waveform() const { return wave_; }
+  const Counters& counters() const { return counters_; }
+  double t_end() const { return wave_.t_end(); }
+  bool finished() const;
+
+  // Sets up inputs and breakpoints; requires every upstream component's
+  // initial sample (call in dependency order).
+  void Initialize();
+  // End time of the next step (after clipping to breakpoints and the end).
+  double NextEnd() const;
+  // Takes one accepted step (restarting first at a pending breakpoint).
+  // Returns false on failure; error() says why.
+  bool Step();
+  const std::string& error() const { return error_; }
+
+  // Keeps samples up to `t` (see Waveform::KeepIndex); returns the time of
+  // the last sample kept.
+  double Truncate(double t);
+  // Breakpoints added while simulating (collisions, upstream jumps).  A jump
+  // sets local variable `local` to `value` at t (right limit).
+  void AddBreakpoint(double t);
+  void AddJump(double t, int local, double value);
+  // Drops dynamic breakpoints and jumps after t.
+  void ForgetAfter(double t);
+
+ private:
+  struct Mode;
+  struct Attempt;
+
+  Mode& ModeAt(double t);
+  std::string ModeKey(double t) const;
+  std::unique_ptr<Mode> BuildMode(const std::string& key);
+  // Fills the global value array with y and with the inputs at t.
+  void Load(double t, const double* y, Side side);
+  void EvalF(const Mode& m, double t, const double* y, double* out, Side side, bool landing);
+  void EvalJacobian(Mode& m, double t, const double* y);
+  bool FactorMatrix(Mode& m, double a);
+  bool Newton(Mode& m, double t_new, double a, const double* c, double* y, double* fy,
+              bool landing);
+  void Rates(const Mode& m, double t, const double* y, const double* fy, const double* y0,
+             double h, double* rate, Side side);
+  bool TryStep(double h, bool landing, Attempt& out);
+  void Restart();
+  bool PendingRestart() const;
+  double NextBreakpoint(double t) const;
+  bool IsBreakpoint(double t) const;
+  double WeightedNorm(const double* v, const double* x, const double* y) const;
+  std::string Describe() const;
+
+  Simulation& sim_;
+  const physics::EquationSystem& sys_;
+  int index_;
+  std::vector<int> vars_;
+  std::vector<int> local_of_;  // global var → local index, -1 if not ours (sized lazily)
+  std::vector<int> inputs_;
+  std::vector<double> static_breakpoints_;
+  std::vector<double> dynamic_breakpoints_;
+  struct Jump {
+    double t;
+    int local;
+    double value;
+  };
+  std::vector<Jump> jumps_;
+  Waveform wave_;
+  std::map<std::string, std::unique_ptr<Mode>> modes_;
+  Mode* last_mode_ = nullptr;
+  std::string last_key_;
+  double mode_lo_ = 1, mode_hi_ = 0;  // interval where last_mode_ is valid
+  // Jacobian cache: valid for (sample index, mode).
+  int jac_sample_ = -1;
+  Mode* jac_mode_ = nullptr;
+  double factored_a_ = -1;
+  Counters counters_;
+  std::string error_;
+  // scratch
+  std::vector<double> x_, f_, y_, fy_, yg_, fg_, c_, r_, est_, rate_, w_;
+};
+
+}  // namespace asgard::solver

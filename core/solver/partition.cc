@@ -1,0 +1,99 @@
+// Tarjan's strongly connected components, iterative (design note in
+// partition.h).
+#include "core/solver/partition.h"
+
+#include <algorithm>
+#include <numeric>
+
+namespace asgard::solver {
+namespace {
+
+// Emits components in an order where each component follows every component
+// reachable from it along `reads` arcs, i.e. its dependencies.
+std::vector<std::vector<int>> Tarjan(const std::vector<std::vector<int>>& reads) {
+  const int n = static_cast<int>(reads.size());
+  std::vector<int> index(n, -1), low(n, 0);
+  std::vector<char> on_stack(n, 0);
+  std::vector<int> stack;
+  std::vector<std::vector<int>> out;
+  struct Frame {
+    int v;
+    size_t next;
+  };
+  std::vector<Frame> calls;
+  int counter = 0;
+  for (int root = 0; root < n; ++root) {
+    if (index[root] >= 0) continue;
+    calls.push_back({root, 0});
+    index[root] = low[root] = counter++;
+    stack.push_back(root);
+    on_stack[root] = 1;
+    while (!calls.empty()) {
+      Frame& f = calls.back();
+      if (f.next < reads[f.v].size()) {
+        const int w = reads[f.v][f.next++];
+        if (index[w] < 0) {
+          index[w] = low[w] = counter++;
+          stack.push_back(w);
+          on_stack[w] = 1;
+          calls.push_back({w, 0});
+        } else if (on_stack[w]) {
+          low[f.v] = std::min(low[f.v], index[w]);
+        }
+        continue;
+      }
+      const int v = f.v;
+      calls.pop_back();
+      if (!calls.empty()) low[calls.back().v] = std::min(low[calls.back().v], low[v]);
+      if (low[v] == index[v]) {
+        std::vector<int> comp;
+        int w;
+        do {
+          w = stack.back();
+          stack.pop_back();
+          on_stack[w] = 0;
+          comp.push_back(w);
+        } while (w != v);
+        std::sort(comp.begin(), comp.end());
+        out.push_back(std::move(comp));
+      }
+    }
+  }
+  return out;
+}
+
+}  // namespace
+
+Partition PartitionEquations(const std::vector<std::vector<int>>& reads, bool single) {
+  const int n = static_cast<int>(reads.size());
+  Partition p;
+  if (single) {
+    if (n > 0) {
+      p.components.emplace_back(n);
+      std::iota(p.components[0].begin(), p.components[0].end(), 0);
+    }
+  } else {
+    p.components = Tarjan(reads);
+  }
+  p.component_of.assign(n, -1);
+  for (size_t c = 0; c < p.components.size(); ++c)
+    for (int v : p.components[c]) p.component_of[v] = static_cast<int>(c);
+  p.upstream.resize(p.components.size());
+  p.downstream.resize(p.components.size());
+  for (int i = 0; i < n; ++i) {
+    const int ci = p.component_of[i];
+    for (int j : reads[i]) {
+      const int cj = p.component_of[j];
+      if (cj != ci) p.upstream[ci].push_back(cj);
+    }
+  }
+  for (size_t c = 0; c < p.components.size(); ++c) {
+    auto& up = p.upstream[c];
+    std::sort(up.begin(), up.end());
+    up.erase(std::unique(up.begin(), up.end()), up.end());
+    for (int u : up) p.downstream[u].push_back(static_cast<int>(c));
+  }
+  return p;
+}
+
+}  // namespace asgard::solver

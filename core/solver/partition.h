@@ -1,0 +1,34 @@
+// Partitioning the state equations into strongly connected components
+// (seed 5.2.1).
+//
+//   reference graph: one node per state variable; an arc j → i when the
+//   equation of i reads variable j (data flows from j to i).
+//
+//        dx₁ ──▶ x₁ ──┐            Tarjan's algorithm finds the cycles:
+//         ▲           │            {x₁, dx₁, x₂, dx₂} form one component when
+//         └─── F(x₁−x₂)◀┘           a mutual force couples them; a free axis
+//                                  gives {x} and {dx}, each on its own.
+//
+// Components come out in dependency order: every component appears after
+// all the components it reads from, so that order is a valid schedule.
+// The search is iterative (no recursion), so 10⁵ variables cannot overflow
+// the stack.
+#pragma once
+
+#include <vector>
+
+namespace asgard::solver {
+
+struct Partition {
+  std::vector<std::vector<int>> components;  // variables of each component, sorted
+  std::vector<int> component_of;             // variable → component
+  std::vector<std::vector<int>> upstream;    // components each one reads from (sorted)
+  std::vector<std::vector<int>> downstream;  // components reading each one (sorted)
+};
+
+// `reads[i]` lists the variables that the equation of variable i reads.
+// With `single` every variable goes into one component (the seed's
+// unpartitioned variant).
+Partition PartitionEquations(const std::vector<std::vector<int>>& reads, bool single = false);
+
+}  // namespace asgard::solver

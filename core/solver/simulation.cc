@@ -1,0 +1,190 @@
+// The event-driven scheduler and truncation (design note in simulation.h).
+#include "core/solver/simulation.h"
+
+#include <algorithm>
+#include <limits>
+
+namespace asgard::solver {
+namespace {
+
+std::vector<std::vector<int>> ReadsOf(const physics::EquationSystem& sys) {
+  std::vector<std::vector<int>> reads(sys.variables.size());
+  for (size_t i = 0; i < sys.variables.size(); ++i) {
+    const auto& v = sys.variables[i];
+    reads[i] = sys.pool.Variables(v.rhs);
+    for (const auto& o : v.overrides) {
+      auto more = sys.pool.Variables(o.expr);
+      reads[i].insert(reads[i].end(), more.begin(), more.end());
+    }
+    std::sort(reads[i].begin(), reads[i].end());
+    reads[i].erase(std::unique(reads[i].begin(), reads[i].end()), reads[i].end());
+  }
+  return reads;
+}
+
+}  // namespace
+
+Simulation::Simulation(const physics::EquationSystem& system, SolverOptions options)
+    : sys_(system), options_(options) {
+  partition_ = PartitionEquations(ReadsOf(sys_), !options_.partition);
+  values_.assign(sys_.variables.size(), 0.0);
+  externs_ = sys_.externs();
+  const double span = sys_.t1 - sys_.t0;
+  restart_step_ = options_.initial_step > 0 ? options_.initial_step : 1e-4 * span;
+  if (options_.max_step > 0) restart_step_ = std::min(restart_step_, options_.max_step);
+  local_index_.assign(sys_.variables.size(), -1);
+  for (size_t c = 0; c < partition_.components.size(); ++c) {
+    const auto& vars = partition_.components[c];
+    for (size_t j = 0; j < vars.size(); ++j) local_index_[vars[j]] = static_cast<int>(j);
+    components_.push_back(std::make_unique<Component>(*this, static_cast<int>(c), vars));
+  }
+  // Dependency order: each component after those it reads from.
+  for (auto& comp : components_) comp->Initialize();
+  stamp_.assign(components_.size(), 0);
+  queued_.assign(components_.size(), 0);
+  for (size_t c = 0; c < components_.size(); ++c) Push(static_cast<int>(c));
+}
+
+Simulation::~Simulation() = default;
+
+double Simulation::InputValue(int var, double t, Side side) const {
+  return components_[partition_.component_of[var]]->waveform().Value(local_index_[var], t, side);
+}
+
+double Simulation::Value(int var, double t, Side side) const { return InputValue(var, t, side); }
+
+double Simulation::Rate(int var, double t, Side side) const {
+  return components_[partition_.component_of[var]]->waveform().Rate(local_index_[var], t, side);
+}
+
+Counters Simulation::totals() const {
+  Counters total;
+  for (const auto& c : components_) total += c->counters();
+  return total;
+}
+
+double Simulation::time_reached() const {
+  double t = sys_.t1;
+  for (const auto& c : components_) t = std::min(t, c->t_end());
+  return t;
+}
+
+bool Simulation::Eligible(int c) const {
+  const Component& comp = *components_[c];
+  if (comp.finished()) return false;
+  const double end = comp.NextEnd();
+  for (int u : partition_.upstream[c]) {
+    if (components_[u]->t_end() < end) return false;
+  }
+  return true;
+}
+
+void Simulation::Push(int c) {
+  if (queued_[c] || !Eligible(c)) return;
+  queued_[c] = 1;
+  queue_.push({components_[c]->t_end(), c, stamp_[c]});
+}
+
+bool Simulation::StepOnce() {
+  while (!queue_.empty()) {
+    const Entry e = queue_.top();
+    queue_.pop();
+    if (e.stamp != stamp_[e.c]) continue;  // superseded by a truncation
+    queued_[e.c] = 0;
+    if (!Eligible(e.c)) continue;
+    Component& comp = *components_[e.c];
+    if (!comp.Step()) {
+      error_ = comp.error();
+      failed_ = true;
+      return false;
+    }
+    if (after_step) after_step(*this, e.c);
+    Push(e.c);
+    for (int d : partition_.downstream[e.c]) Push(d);
+    return true;
+  }
+  return false;
+}
+
+bool Simulation::Run(const std::function<void(double)>& progress) {
+  if (options_.schedule == SolverOptions::Schedule::kSequential) {
+    // Each component to the end, in dependency order (seed 5.2.4 variant 5).
+    // A truncation of an earlier component restarts the sweep from it.
+    for (size_t c = 0; c < components_.size(); ++c) {
+      while (!components_[c]->finished()) {
+        if (!components_[c]->Step()) {
+          error_ = components_[c]->error();
+          return false;
+        }
+        if (after_step) after_step(*this, static_cast<int>(c));
+        for (size_t e = 0; e <= c; ++e) {
+          if (!components_[e]->finished()) {
+            c = e;
+            break;
+          }
+        }
+      }
+      if (progress) progress(time_reached());
+    }
+    return true;
+  }
+  long count = 0;
+  while (StepOnce()) {
+    if (progress && (++count & 255) == 0) progress(time_reached());
+  }
+  if (failed_) return false;
+  if (progress) progress(time_reached());
+  return true;
+}
+
+void Simulation::Truncate(int c, double t) {
+  // Cut times propagate in dependency order (components are numbered in
+  // it), so each component is cut once, to the earliest time required.
+  const size_t n = components_.size();
+  std::vector<double> cut(n, std::numeric_limits<double>::infinity());
+  cut[c] = t;
+  std::vector<int> affected;
+  for (size_t k = static_cast<size_t>(c); k < n; ++k) {
+    if (cut[k] == std::numeric_limits<double>::infinity()) continue;
+    const double kept = components_[k]->Truncate(cut[k]);
+    components_[k]->ForgetAfter(kept);
+    affected.push_back(static_cast<int>(k));
+    if (on_truncate) on_truncate(*this, static_cast<int>(k), kept);
+    for (int d : partition_.downstream[k]) cut[d] = std::min(cut[d], kept);
+  }
+  RepairQueue(affected);
+}
+
+void Simulation::SetValueAt(int var, double t, double value) {
+  const int c = partition_.component_of[var];
+  Truncate(c, t);
+  Component& comp = *components_[c];
+  comp.AddJump(t, local_index_[var], value);
+  // Readers must land on t too: their rates jump there.
+  std::vector<int> stack{c};
+  std::vector<char> seen(components_.size(), 0);
+  while (!stack.empty()) {
+    const int k = stack.back();
+    stack.pop_back();
+    for (int d : partition_.downstream[k]) {
+      if (seen[d]) continue;
+      seen[d] = 1;
+      components_[d]->AddBreakpoint(t);
+      stack.push_back(d);
+    }
+  }
+  RepairQueue({c});
+}
+
+void Simulation::RepairQueue(const std::vector<int>& affected) {
+  for (int k : affected) {
+    ++stamp_[k];
+    queued_[k] = 0;
+  }
+  for (int k : affected) Push(k);
+  // Components upstream of an affected one are unchanged; their readers that
+  // were waiting may now be eligible again only through them, which Push on
+  // the next step handles.
+}
+
+}  // namespace asgard::solver

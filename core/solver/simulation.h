@@ -1,0 +1,115 @@
+// Simulation: the partitioned, event-driven solution of a scene's equations
+// (seed 5.2.3).
+//
+//   FormEquations ─▶ Partition (Tarjan) ─▶ Schedule ─▶ Component::Step ─▶ after_step hook
+//                                             ▲                               │ (collisions)
+//                                             └──────── Truncate ◀────────────┘
+//
+// Schedule (the seed's pseudo-code): a priority queue holds the components
+// that may take their next step, ordered by the time they have reached (ties
+// by component index, so runs are deterministic).  The component furthest
+// behind steps next.  A component may step only when every component it reads
+// from has been computed at least to the end of that step, so values are
+// interpolated, never extrapolated.  After a step, the component itself and
+// the components that read from it are checked for eligibility.
+//
+// Truncate(c, t) cuts c back to its last sample at or before t and,
+// transitively, every component reading from it back to the time c keeps;
+// the queue is repaired and the run resumes.  Because a component's step
+// depends only on its own last sample and on its inputs' waveforms, a
+// truncated component that resumes with unchanged inputs recomputes exactly
+// the samples it lost.
+//
+// Rejected alternatives: (1) one global step for all components — the seed's
+// Figure 5.7 shows the cost grows with the product of size and stiffness;
+// (2) waveform relaxation — iterates whole waveforms to convergence, wasteful
+// when most coupling is one-way; (3) run each component to the end in order —
+// a collision then throws away whole futures (seed 5.2.4, variant 5, kept as
+// SolverOptions::Schedule::kSequential for comparison).
+#pragma once
+
+#include <functional>
+#include <memory>
+#include <queue>
+#include <string>
+#include <vector>
+
+#include "core/physics/equations.h"
+#include "core/solver/component.h"
+#include "core/solver/partition.h"
+
+namespace asgard::solver {
+
+class Simulation {
+ public:
+  Simulation(const physics::EquationSystem& system, SolverOptions options);
+  ~Simulation();
+
+  // Runs until every component reaches the end time.  Returns false when a
+  // component fails; error() then names it, its variables and the time.
+  // `progress` (may be empty) receives the least time reached, in [t0, t1].
+  bool Run(const std::function<void(double)>& progress = {});
+  const std::string& error() const { return error_; }
+
+  // Takes one step of the component furthest behind; false when none is
+  // eligible (done) or on failure.
+  bool StepOnce();
+
+  const physics::EquationSystem& system() const { return sys_; }
+  const SolverOptions& options() const { return options_; }
+  const Partition& partition() const { return partition_; }
+  int component_count() const { return static_cast<int>(components_.size()); }
+  const Component& component(int c) const { return *components_[c]; }
+  int component_of(int var) const { return partition_.component_of[var]; }
+  Counters totals() const;
+  // The least time every component has reached.
+  double time_reached() const;
+
+  // Value and rate of variable `var` at time t (within what is computed).
+  double Value(int var, double t, Side side = Side::kRight) const;
+  double Rate(int var, double t, Side side = Side::kRight) const;
+
+  // Cuts component c back to t and everything reading from it (see above).
+  void Truncate(int c, double t);
+  // Sets `var` to `value` at time t (right limit), as a collision impulse
+  // does: truncates its component to t and makes it restart there.
+  void SetValueAt(int var, double t, double value);
+
+  // Called after every accepted step of a component (collision detection).
+  std::function<void(Simulation&, int component)> after_step;
+  // Called for each component truncated, with the time it keeps.
+  std::function<void(Simulation&, int component, double t)> on_truncate;
+
+  // Used by components.
+  double* values() { return values_.data(); }
+  double InputValue(int var, double t, Side side) const;
+  const expr::ExternFn& externs() const { return externs_; }
+  double restart_step() const { return restart_step_; }
+
+ private:
+  bool Eligible(int c) const;
+  void Push(int c);
+  void RepairQueue(const std::vector<int>& affected);
+
+  const physics::EquationSystem& sys_;
+  SolverOptions options_;
+  Partition partition_;
+  std::vector<int> local_index_;  // variable → index within its component
+  std::vector<std::unique_ptr<Component>> components_;
+  std::vector<double> values_;
+  expr::ExternFn externs_;
+  double restart_step_ = 0.0;
+  struct Entry {
+    double t;
+    int c;
+    uint64_t stamp;
+    bool operator>(const Entry& o) const { return t != o.t ? t > o.t : c > o.c; }
+  };
+  std::priority_queue<Entry, std::vector<Entry>, std::greater<Entry>> queue_;
+  std::vector<uint64_t> stamp_;    // current stamp per component
+  std::vector<char> queued_;
+  std::string error_;
+  bool failed_ = false;
+};
+
+}  // namespace asgard::solver

@@ -1,0 +1,81 @@
+// Waveform storage and Hermite interpolation (design note in waveform.h).
+#include "core/solver/waveform.h"
+
+#include <algorithm>
+
+namespace asgard::solver {
+
+void Waveform::Append(double t, const double* x, const double* f, SampleInfo info) {
+  times_.push_back(t);
+  x_.insert(x_.end(), x, x + n_);
+  f_.insert(f_.end(), f, f + n_);
+  info_.push_back(info);
+}
+
+void Waveform::Resize(int k) {
+  times_.resize(k);
+  x_.resize(static_cast<size_t>(k) * n_);
+  f_.resize(static_cast<size_t>(k) * n_);
+  info_.resize(k);
+}
+
+int Waveform::KeepIndex(double t) const {
+  // First sample with time >= t.
+  const int k = static_cast<int>(std::lower_bound(times_.begin(), times_.end(), t) - times_.begin());
+  if (k < size() && times_[k] == t) return k;
+  return std::max(0, k - 1);
+}
+
+int Waveform::Locate(double t, Side side) const {
+  const int n = size();
+  if (n == 1) return 0;
+  int k;
+  if (side == Side::kLeft) {
+    // segment with time(k) < t <= time(k+1)
+    k = static_cast<int>(std::lower_bound(times_.begin(), times_.end(), t) - times_.begin()) - 1;
+  } else {
+    // segment with time(k) <= t < time(k+1)
+    k = static_cast<int>(std::upper_bound(times_.begin(), times_.end(), t) - times_.begin()) - 1;
+  }
+  return std::clamp(k, 0, n - 1);
+}
+
+namespace {
+struct Hermite {
+  double h00, h10, h01, h11;  // value weights
+  double d00, d10, d01, d11;  // rate weights (already divided by h where needed)
+};
+Hermite Weights(double t0, double t1, double t) {
+  const double h = t1 - t0;
+  const double s = (t - t0) / h;
+  const double s2 = s * s, s3 = s2 * s;
+  return {2 * s3 - 3 * s2 + 1,
+          (s3 - 2 * s2 + s) * h,
+          -2 * s3 + 3 * s2,
+          (s3 - s2) * h,
+          (6 * s2 - 6 * s) / h,
+          3 * s2 - 4 * s + 1,
+          (-6 * s2 + 6 * s) / h,
+          3 * s2 - 2 * s};
+}
+}  // namespace
+
+double Waveform::Value(int i, double t, Side side) const {
+  const int k = Locate(t, side);
+  if (k + 1 >= size() || times_[k + 1] == times_[k]) return x(k)[i];
+  if (t == times_[k]) return x(k)[i];
+  if (t == times_[k + 1]) return x(k + 1)[i];
+  const Hermite w = Weights(times_[k], times_[k + 1], t);
+  return w.h00 * x(k)[i] + w.h10 * f(k)[i] + w.h01 * x(k + 1)[i] + w.h11 * f(k + 1)[i];
+}
+
+double Waveform::Rate(int i, double t, Side side) const {
+  const int k = Locate(t, side);
+  if (k + 1 >= size() || times_[k + 1] == times_[k]) return f(k)[i];
+  if (t == times_[k]) return f(k)[i];
+  if (t == times_[k + 1]) return f(k + 1)[i];
+  const Hermite w = Weights(times_[k], times_[k + 1], t);
+  return w.d00 * x(k)[i] + w.d10 * f(k)[i] + w.d01 * x(k + 1)[i] + w.d11 * f(k + 1)[i];
+}
+
+}  // namespace asgard::solver

@@ -1,0 +1,72 @@
+// Waveforms: the computed history of one component's state variables.
+//
+// A component's variables share one time scale (seed 5.1.3 keeps a time scale
+// per variable; every variable belongs to exactly one component, so one scale
+// per component is the same thing without the duplication).  Each sample
+// holds the state x and its rate f = ẋ, so values between samples are the
+// cubic Hermite interpolant of (x, f) at both ends.  For a trapezoidal step
+// this cubic is exactly the quadratic the rule assumes (f linear over the
+// step), so what is played back is what was integrated (seed 4.1.9).
+//
+//   x ▲        ●━━━━━●
+//     │   ●━━━━┛     ┃ jump: two samples at one time (left and right limit)
+//     │ ●━┛          ●━━━━●
+//     └──────────────────────▶ t
+//
+// A sample also records what the integrator needs to continue from it
+// exactly as it did the first time (next step size, whether the step history
+// restarts there), so truncating to a sample and resuming reproduces the
+// original computation bit for bit.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <vector>
+
+namespace asgard::solver {
+
+enum class Side : uint8_t { kLeft, kRight };
+
+struct SampleInfo {
+  double h_next = 0.0;   // step size proposed for the step starting here
+  bool restart = false;  // no usable step history before this sample
+};
+
+class Waveform {
+ public:
+  explicit Waveform(int n = 0) : n_(n) {}
+
+  int variable_count() const { return n_; }
+  int size() const { return static_cast<int>(times_.size()); }
+  bool empty() const { return times_.empty(); }
+  double time(int k) const { return times_[k]; }
+  double t_end() const { return times_.back(); }
+  const double* x(int k) const { return &x_[static_cast<size_t>(k) * n_]; }
+  const double* f(int k) const { return &f_[static_cast<size_t>(k) * n_]; }
+  const SampleInfo& info(int k) const { return info_[k]; }
+  SampleInfo& info(int k) { return info_[k]; }
+
+  void Append(double t, const double* x, const double* f, SampleInfo info);
+  // Keeps samples 0..k.
+  void Resize(int k_plus_one);
+  // Index of the sample that a truncation to time t keeps last: the last
+  // sample with time < t, or the first sample at exactly t (its left limit).
+  int KeepIndex(double t) const;
+
+  // Value and rate of local variable i at time t, t within [time(0), t_end()].
+  // At a jump, kLeft gives the limit from below and kRight from above.
+  double Value(int i, double t, Side side) const;
+  double Rate(int i, double t, Side side) const;
+
+ private:
+  // Segment [k, k+1] containing t (k+1 < size), or the last sample (k+1 == size).
+  int Locate(double t, Side side) const;
+
+  int n_;
+  std::vector<double> times_;
+  std::vector<double> x_;
+  std::vector<double> f_;
+  std::vector<SampleInfo> info_;
+};
+
+}  // namespace asgard::solver

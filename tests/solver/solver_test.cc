@@ -1,0 +1,322 @@
+// Solver tests: accuracy against closed forms, step control, partitioning,
+// stiffness, determinism and truncation.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstring>
+#include <fstream>
+#include <sstream>
+
+#include "core/app/pipeline.h"
+#include "tests/solver/reference_problems.h"
+
+namespace asgard {
+namespace {
+
+using app::Run;
+using physics::BodySlot;
+
+Run SimulateOk(const std::string& text, solver::SolverOptions so = {}) {
+  app::RunOptions opts;
+  opts.solver = so;
+  Run run = app::Simulate(text, opts);
+  for (const auto& d : run.diagnostics) ADD_FAILURE() << d.span.line << ": " << d.message;
+  EXPECT_TRUE(run.ok) << run.solver_error;
+  return run;
+}
+
+int Var(const Run& run, const std::string& body, BodySlot slot) {
+  const int b = run.equations->FindBody(body);
+  EXPECT_GE(b, 0);
+  return run.equations->bodies[b].first_var + slot;
+}
+
+double At(const Run& run, const std::string& body, BodySlot slot, double t) {
+  return run.simulation->Value(Var(run, body, slot), t);
+}
+
+solver::SolverOptions Tol(double rtol, double atol) {
+  solver::SolverOptions so;
+  so.rtol = rtol;
+  so.atol = atol;
+  return so;
+}
+
+TEST(Projectile, IsExactToRoundOffAndTakesAHandfulOfSteps) {
+  const Run run = SimulateOk(testing::Projectile(10.0));
+  const int c = run.simulation->component_of(Var(run, "p", physics::kY));
+  const auto& wave = run.simulation->component(c).waveform();
+  // The step grows geometrically from its initial 1e-3 to cover the interval.
+  EXPECT_LE(run.simulation->component(c).counters().steps, 12);
+  EXPECT_EQ(run.simulation->component(c).counters().rejected_steps, 0);
+  for (int k = 0; k < wave.size(); ++k) {
+    const double t = wave.time(k);
+    const double y = 20 * t - 0.5 * 9.81 * t * t;
+    // Each step adds a few roundings of numbers of size |y| ≤ 500.
+    EXPECT_NEAR(At(run, "p", physics::kY, t), y, 1e-11 * (1 + std::abs(y))) << "t=" << t;
+    EXPECT_NEAR(At(run, "p", physics::kX, t), 3 * t, 1e-12 * (1 + 3 * t));
+  }
+  // Between samples the playback interpolant is exact for a quadratic too.
+  for (double t = 0; t <= 10; t += 0.37) {
+    EXPECT_NEAR(At(run, "p", physics::kY, t), 20 * t - 0.5 * 9.81 * t * t, 1e-10);
+  }
+}
+
+TEST(Oscillator, MatchesCosineWithinTolerance) {
+  const double k = 4.0, m = 1.0, w = std::sqrt(k / m);
+  const Run run = SimulateOk(testing::Oscillator(k, m, 20.0), Tol(1e-8, 1e-10));
+  double max_err = 0;
+  for (double t = 0; t <= 20; t += 0.01)
+    max_err = std::max(max_err, std::abs(At(run, "o", physics::kX, t) - std::cos(w * t)));
+  // Global error of a second-order method under per-step control: a few
+  // hundred times the per-step tolerance over 6 periods.
+  EXPECT_LT(max_err, 1e-5);
+  EXPECT_GT(max_err, 1e-12);  // it is a numerical solution, not a copy of the answer
+}
+
+TEST(DampedLink, MatchesTheCriticallyDampedClosedForm) {
+  for (double k : {1e2, 1e4}) {
+    const double m = 2.0;
+    const Run run = SimulateOk(testing::DampedLink(k, m, 1.0, 2.0), Tol(1e-8, 1e-10));
+    double max_err = 0;
+    for (double t = 0; t <= 2; t += 1e-3)
+      max_err = std::max(max_err, std::abs(At(run, "d", physics::kX, t) -
+                                           testing::DampedLinkExact(k, m, 1.0, t)));
+    EXPECT_LT(max_err, 1e-6) << "k=" << k;
+  }
+}
+
+// Times where x crosses zero going in the given direction, by bisection on
+// the playback interpolant.
+std::vector<double> Crossings(const Run& run, int var, double t0, double t1, double dt) {
+  std::vector<double> out;
+  double a = t0, fa = run.simulation->Value(var, a);
+  for (double b = t0 + dt; b <= t1; b += dt) {
+    const double fb = run.simulation->Value(var, b);
+    if (fa < 0 && fb >= 0) {
+      double lo = a, hi = b;
+      for (int i = 0; i < 60; ++i) {
+        const double mid = 0.5 * (lo + hi);
+        (run.simulation->Value(var, mid) < 0 ? lo : hi) = mid;
+      }
+      out.push_back(0.5 * (lo + hi));
+    }
+    a = b;
+    fa = fb;
+  }
+  return out;
+}
+
+TEST(Pendulum, PeriodMatchesTheEllipticIntegral) {
+  const double L = 1.0, g = 9.81, theta0 = 1.0;
+  const double T = testing::PendulumPeriod(L, theta0, g);
+  const Run run = SimulateOk(testing::Pendulum(L, theta0, g, 1e7, 4 * T), Tol(1e-9, 1e-11));
+  const auto zc = Crossings(run, Var(run, "m", physics::kX), 0, 4 * T, 1e-3);
+  ASSERT_GE(zc.size(), 3u);
+  const double measured = (zc.back() - zc.front()) / (zc.size() - 1);
+  // The link stretches by δ ≈ m(g + v²/L)/k ≈ 3e-6 L, which lengthens the
+  // period by about δ/(2L); tolerance 1e-5 relative covers it and the solver.
+  EXPECT_NEAR(measured / T, 1.0, 1e-5) << "measured " << measured << " expected " << T;
+}
+
+TEST(TorqueFreeTop, ConservesEnergyAndMomentumAndFlipsAtThePredictedPeriod) {
+  const double I1 = 1, I2 = 2, I3 = 3;
+  const double w0[3] = {0.01, 1.0, 0.02};
+  const double T = testing::TopPeriod(I1, I2, I3, w0[0], w0[1], w0[2]);
+  const Run run = SimulateOk(testing::Top(I1, I2, I3, "0.01 1.0 0.02", 2.5 * T), Tol(1e-9, 1e-12));
+  auto state = [&](double t, double w[3], Eigen::Vector3d& L) {
+    for (int a = 0; a < 3; ++a) w[a] = At(run, "top", BodySlot(physics::kW1 + a), t);
+    Eigen::Quaterniond q(At(run, "top", physics::kQw, t), At(run, "top", physics::kQx, t),
+                         At(run, "top", physics::kQy, t), At(run, "top", physics::kQz, t));
+    L = q.normalized().toRotationMatrix() * Eigen::Vector3d(I1 * w[0], I2 * w[1], I3 * w[2]);
+  };
+  double w[3];
+  Eigen::Vector3d L0;
+  state(0, w, L0);
+  const double E0 = 0.5 * (I1 * w[0] * w[0] + I2 * w[1] * w[1] + I3 * w[2] * w[2]);
+  double max_dE = 0, max_dL = 0;
+  for (double t = 0; t <= 2.5 * T; t += T / 500) {
+    Eigen::Vector3d L;
+    state(t, w, L);
+    const double E = 0.5 * (I1 * w[0] * w[0] + I2 * w[1] * w[1] + I3 * w[2] * w[2]);
+    max_dE = std::max(max_dE, std::abs(E - E0) / E0);
+    max_dL = std::max(max_dL, (L - L0).norm() / L0.norm());
+  }
+  EXPECT_LT(max_dE, 1e-6);
+  EXPECT_LT(max_dL, 1e-6);
+  // ω₂ flips sign twice per period.
+  const auto zc = Crossings(run, Var(run, "top", physics::kW2), 0, 2.5 * T, T / 2000);
+  ASSERT_GE(zc.size(), 2u);
+  EXPECT_NEAR((zc[1] - zc[0]) / T, 1.0, 1e-4) << "T=" << T;
+}
+
+TEST(Trajectory, BodyFollowsItsCurveAndStepsLandOnTheKnots) {
+  const std::string text = std::string(testing::kBallShape) +
+                           "body b -shape ball -init_pos {0 0 0}\n"
+                           "trajectory path -points {{1 0 0 0} {2 1 2 0} {3 3 2 1} {4 4 0 0}} "
+                           "-body b -state pos\n"
+                           "simulator -finish 6\n";
+  const Run run = SimulateOk(text);
+  const auto& curve = *run.equations->curves[0];
+  for (double t = 1.0; t <= 4.0; t += 0.05) {
+    const Eigen::Vector3d p = curve.Value(t);
+    for (int a = 0; a < 3; ++a)
+      EXPECT_NEAR(At(run, "b", BodySlot(physics::kX + a), t), p[a], 1e-12) << "t=" << t;
+  }
+  // After the interval the body coasts with the curve's final velocity.
+  const Eigen::Vector3d v = curve.Value(4.0, 1), p4 = curve.Value(4.0);
+  for (int a = 0; a < 3; ++a)
+    EXPECT_NEAR(At(run, "b", BodySlot(physics::kX + a), 6.0), p4[a] + 2 * v[a], 1e-9);
+  // Samples exist exactly at the interval ends and the knots.
+  const int c = run.simulation->component_of(Var(run, "b", physics::kX));
+  const auto& wave = run.simulation->component(c).waveform();
+  for (double knot : {1.0, 2.0, 3.0, 4.0}) {
+    bool found = false;
+    for (int k = 0; k < wave.size(); ++k) found |= wave.time(k) == knot;
+    EXPECT_TRUE(found) << "no sample at t=" << knot;
+  }
+  // Before t=1 the body rests at the origin; at t=1 it jumps onto the curve.
+  EXPECT_EQ(run.simulation->Value(Var(run, "b", physics::kX), 1.0, solver::Side::kLeft), 0.0);
+}
+
+TEST(Tolerance, AchievedErrorFallsWithTheRequestedToleranceOverFourDecades) {
+  const double k = 4.0, w = 2.0;
+  std::vector<double> errors;
+  for (double tol : {1e-4, 1e-5, 1e-6, 1e-7, 1e-8}) {
+    const Run run = SimulateOk(testing::Oscillator(k, 1.0, 10.0), Tol(tol, tol * 1e-2));
+    double err = 0;
+    for (double t = 0; t <= 10; t += 0.01)
+      err = std::max(err, std::abs(At(run, "o", physics::kX, t) - std::cos(w * t)));
+    errors.push_back(err);
+  }
+  for (size_t i = 1; i < errors.size(); ++i) {
+    // Per-step control of a second-order method: global error ∝ tol^(2/3),
+    // a factor 4.6 per decade; require at least 3.
+    EXPECT_GT(errors[i - 1] / errors[i], 3.0) << "decade " << i;
+  }
+}
+
+TEST(Partition, ALoneSphereUnderGravitySplitsPerAxis) {
+  const Run run = SimulateOk(testing::Projectile(1.0));
+  const auto& sim = *run.simulation;
+  for (BodySlot s : {physics::kX, physics::kY, physics::kZ, physics::kDx, physics::kDy,
+                     physics::kDz, physics::kW1, physics::kW2, physics::kW3}) {
+    EXPECT_EQ(sim.component(sim.component_of(Var(run, "p", s))).variables().size(), 1u);
+  }
+  // The quaternion's four rates read each other: one component of four.
+  EXPECT_EQ(sim.component(sim.component_of(Var(run, "p", physics::kQw))).variables().size(), 4u);
+  EXPECT_EQ(sim.component_count(), 10);
+  // x reads dx: its component is downstream of dx's.
+  const int cx = sim.component_of(Var(run, "p", physics::kX));
+  const int cdx = sim.component_of(Var(run, "p", physics::kDx));
+  EXPECT_EQ(sim.partition().upstream[cx], std::vector<int>{cdx});
+}
+
+TEST(Partition, TwoBodiesWithAMutualXForceShareOneXComponent) {
+  const std::string text = std::string(testing::kBallShape) + testing::Ball("b1", "-2 0 0") +
+                           testing::Ball("b2", "2 1 0") +
+                           "force -body b1 -x {(b2.x - b1.x)} -y 0 -z 0\n"
+                           "force -body b2 -x {(b1.x - b2.x)} -y 0 -z 0\n"
+                           "simulator -finish 1\n";
+  const Run run = SimulateOk(text);
+  const auto& sim = *run.simulation;
+  const int c = sim.component_of(Var(run, "b1", physics::kX));
+  std::vector<int> expected = {Var(run, "b1", physics::kX), Var(run, "b1", physics::kDx),
+                               Var(run, "b2", physics::kX), Var(run, "b2", physics::kDx)};
+  std::sort(expected.begin(), expected.end());
+  EXPECT_EQ(sim.component(c).variables(), expected);
+  EXPECT_NE(sim.component_of(Var(run, "b1", physics::kY)),
+            sim.component_of(Var(run, "b2", physics::kY)));
+  EXPECT_EQ(sim.component(sim.component_of(Var(run, "b1", physics::kY))).variables().size(), 1u);
+}
+
+std::string ReadSample(const std::string& name) {
+  std::ifstream in(std::string(ASGARD_SOURCE_DIR) + "/samples/" + name);
+  std::stringstream ss;
+  ss << in.rdbuf();
+  return ss.str();
+}
+
+TEST(Partition, TheTwoRodLinkedPendulumFormsOneLargeComponent) {
+  const Run run = SimulateOk(ReadSample("pendulum.al"));
+  const auto& sim = *run.simulation;
+  const int c = sim.component_of(Var(run, "b1", physics::kX));
+  EXPECT_EQ(c, sim.component_of(Var(run, "b2", physics::kX)));
+  // Both rods' 13 state variables couple through the off-centre links.
+  EXPECT_EQ(sim.component(c).variables().size(), 26u);
+  // The free ball is not part of it.
+  EXPECT_NE(c, sim.component_of(Var(run, "b3", physics::kX)));
+}
+
+TEST(StiffLink, NoRingingAndStepCountRoughlyFlatFromK1e2To1e8) {
+  std::vector<long> steps;
+  for (double k : {1e2, 1e4, 1e6, 1e8}) {
+    const double m = 1.0, w = std::sqrt(k / m);
+    // Simulate 50 time constants of the slowest link, scaled to each k.
+    const double finish = 50.0 / w;
+    const Run run = SimulateOk(testing::DampedLink(k, m, 1.0, finish), Tol(1e-6, 1e-9));
+    double min_x = 1, max_err = 0;
+    for (double s = 0; s <= 50; s += 0.01) {
+      const double t = s / w;
+      const double x = At(run, "d", physics::kX, t);
+      min_x = std::min(min_x, x);
+      max_err = std::max(max_err, std::abs(x - testing::DampedLinkExact(k, m, 1.0, t)));
+    }
+    EXPECT_GT(min_x, -1e-6) << "ringing at k=" << k;  // critically damped: never overshoots
+    EXPECT_LT(max_err, 1e-4) << "k=" << k;
+    steps.push_back(run.simulation->totals().steps);
+  }
+  for (long s : steps) EXPECT_LT(s, 3 * steps.front()) << "steps " << s << " vs " << steps.front();
+}
+
+TEST(StiffLink, TrBdf2TakesOverFromTheTrapezoidalRuleOnAStiffStep) {
+  // A stiff link over a long interval: once the transient has decayed the
+  // steps are far longer than 1/ω, and the step must be L-stable.
+  const Run run = SimulateOk(testing::DampedLink(1e8, 1.0, 1.0, 10.0));
+  const auto c = run.simulation->totals();
+  EXPECT_GT(c.trbdf2_steps, c.steps / 2);
+}
+
+void ExpectSameWaveforms(const solver::Simulation& a, const solver::Simulation& b) {
+  ASSERT_EQ(a.component_count(), b.component_count());
+  for (int c = 0; c < a.component_count(); ++c) {
+    const auto& wa = a.component(c).waveform();
+    const auto& wb = b.component(c).waveform();
+    ASSERT_EQ(wa.size(), wb.size()) << "component " << c;
+    const int n = wa.variable_count();
+    for (int k = 0; k < wa.size(); ++k) {
+      ASSERT_EQ(wa.time(k), wb.time(k));
+      ASSERT_EQ(std::memcmp(wa.x(k), wb.x(k), n * sizeof(double)), 0) << "c " << c << " k " << k;
+      ASSERT_EQ(std::memcmp(wa.f(k), wb.f(k), n * sizeof(double)), 0);
+    }
+  }
+}
+
+TEST(Determinism, TwoRunsGiveBitIdenticalWaveforms) {
+  const std::string text = ReadSample("pendulum.al");
+  const Run a = SimulateOk(text);
+  const Run b = SimulateOk(text);
+  ExpectSameWaveforms(*a.simulation, *b.simulation);
+}
+
+TEST(Determinism, TruncateAndResumeReproducesTheFromScratchResultBitForBit) {
+  const std::string text = ReadSample("pendulum.al");
+  const Run reference = SimulateOk(text);
+  Run run = SimulateOk(text);
+  auto& sim = *run.simulation;
+  // Cut every component somewhere in the middle, one after another, and resume.
+  for (int c = 0; c < sim.component_count(); ++c) sim.Truncate(c, 0.37 + 0.1 * c);
+  EXPECT_GT(sim.totals().truncated_steps, 0);
+  ASSERT_TRUE(sim.Run()) << sim.error();
+  ExpectSameWaveforms(*reference.simulation, sim);
+}
+
+TEST(Scenes, TheSeedSamplesSimulate) {
+  for (const char* name : {"pendulum.al", "figure62.al"}) {
+    const Run run = SimulateOk(ReadSample(name));
+    EXPECT_EQ(run.simulation->time_reached(), run.equations->t1) << name;
+  }
+}
+
+}  // namespace
+}  // namespace asgard

@@ -1,0 +1,43 @@
+// Waveform storage, truncation and Hermite interpolation.
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "core/solver/waveform.h"
+
+namespace asgard::solver {
+namespace {
+
+TEST(Waveform, HermiteInterpolationIsExactForCubics) {
+  Waveform w(1);
+  auto x = [](double t) { return 1 + 2 * t - 3 * t * t + 0.5 * t * t * t; };
+  auto f = [](double t) { return 2 - 6 * t + 1.5 * t * t; };
+  for (double t : {0.0, 0.5, 2.0}) {
+    const double xv = x(t), fv = f(t);
+    w.Append(t, &xv, &fv, {});
+  }
+  for (double t = 0; t <= 2; t += 0.01) {
+    EXPECT_NEAR(w.Value(0, t, Side::kRight), x(t), 1e-13);
+    EXPECT_NEAR(w.Rate(0, t, Side::kRight), f(t), 1e-12);
+  }
+}
+
+TEST(Waveform, JumpsHaveDistinctLeftAndRightLimits) {
+  Waveform w(1);
+  const double zero = 0, one = 1, two = 2;
+  w.Append(0, &zero, &zero, {});
+  w.Append(1, &one, &zero, {});
+  w.Append(1, &two, &zero, {0.1, true});
+  w.Append(2, &two, &zero, {});
+  EXPECT_EQ(w.Value(0, 1, Side::kLeft), 1);
+  EXPECT_EQ(w.Value(0, 1, Side::kRight), 2);
+  EXPECT_EQ(w.KeepIndex(1.0), 1);  // a truncation to t keeps the left limit
+  EXPECT_EQ(w.KeepIndex(1.5), 2);
+  EXPECT_EQ(w.KeepIndex(0.5), 0);
+  w.Resize(w.KeepIndex(1.0) + 1);
+  EXPECT_EQ(w.t_end(), 1);
+  EXPECT_EQ(w.Value(0, 1, Side::kRight), 1);
+}
+
+}  // namespace
+}  // namespace asgard::solver
