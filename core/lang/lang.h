@@ -24,6 +24,7 @@
 // recorded; evaluation continues with the next top-level command).
 #pragma once
 
+#include <cstddef>
 #include <string>
 #include <string_view>
 
@@ -34,13 +35,20 @@ namespace asgard::lang {
 struct EvalLimits {
   long command_limit = 5'000'000;  // Tcl commands per evaluation
   int time_limit_ms = 5000;        // wall-clock time per evaluation
+  size_t memory_limit_mb = 512;    // heap growth allowed during an evaluation
 };
 
-// Evaluates `text` and returns the scene.  `filename` is used only in
-// messages.  Never throws.
+// Evaluates `text` and returns the scene.  Never throws.
+//
+// Spans: SourceSpan offsets are bytes into `text`.  A Word's span covers the
+// whole source word including its braces or quotes (`{-5 0 0}`); its text is
+// the value without them.  Diagnostics are in the order they were found; a
+// parse error (unbalanced brace, ...) is reported at the opening delimiter
+// and the commands before it are still evaluated.
 scene::Scene Evaluate(std::string_view text, const EvalLimits& limits = {});
 
-// Formats a diagnostic as "FILE:LINE:COL: error: message".
+// Formats a diagnostic as "FILE:LINE:COL: error: message" ("warning" for
+// warnings; "FILE: error: message" when the location is unknown).
 std::string FormatDiagnostic(std::string_view filename, const scene::Diagnostic& d);
 
 }  // namespace asgard::lang

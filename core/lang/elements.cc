@@ -1,0 +1,426 @@
+// Element commands: simulator body link force torque trajectory lightsource
+// view (shape_set is in shapes.cc).
+//
+// Design: every command is a Tcl object command in the master interpreter
+// exposed to the child as an alias.  The shared entry point (RunElement)
+// locates the command in the source, counts the run, calls the handler and
+// converts every failure into a diagnostic -- it always returns TCL_OK (so an
+// enclosing loop or proc keeps going and the other elements are still made),
+// except when an evaluation limit was hit, which must stop the script.
+// Handlers validate everything before appending, so a failed command leaves
+// no partial element behind.  Cross references (shape, bodies, trajectory)
+// are checked later in FinishScene, so forward references work.
+#include "core/lang/elements.h"
+
+#include <tcl.h>
+
+#include <cctype>
+#include <memory>
+
+#include "core/lang/options.h"
+
+namespace asgard::lang {
+
+scene::SourceSpan Invocation::ArgSpan(int i) const {
+  if (const SourceWord* w = ArgWord(i)) return w->span;
+  return site.command;
+}
+
+const SourceWord* Invocation::ArgWord(int i) const {
+  if (!site.words_matched || i < 0 || i >= objc) return nullptr;
+  return &site.source->words[i];
+}
+
+std::string Invocation::Arg(int i) const { return ObjString(objv[i]); }
+
+void EvalContext::AddError(std::string message, const scene::SourceSpan& span) {
+  scene.diagnostics.push_back({scene::Severity::kError, std::move(message), span});
+}
+
+void EvalContext::AddWarning(std::string message, const scene::SourceSpan& span) {
+  scene.diagnostics.push_back({scene::Severity::kWarning, std::move(message), span});
+}
+
+namespace {
+
+bool StartsWithDash(const std::string& s) { return !s.empty() && s[0] == '-'; }
+
+bool IsIdentifier(const std::string& s) {
+  if (s.empty() || !(std::isalpha(static_cast<unsigned char>(s[0])) || s[0] == '_')) return false;
+  for (char c : s) {
+    if (!(std::isalnum(static_cast<unsigned char>(c)) || c == '_')) return false;
+  }
+  return true;
+}
+
+template <typename T>
+void CheckUnique(const std::vector<T>& existing, const Invocation& inv, const std::string& name) {
+  for (const T& e : existing) {
+    if (!name.empty() && e.name == name) {
+      throw ElementError{
+          inv.kind + ": '" + name + "' is already defined" +
+              (e.command.known() ? " at line " + std::to_string(e.command.line) : std::string()),
+          1};
+    }
+  }
+}
+
+// Optional name for lightsource/view: returns the index of the first option.
+int OptionalName(const Invocation& inv, std::string& name) {
+  if (inv.objc > 1 && !StartsWithDash(inv.Arg(1))) {
+    name = inv.Arg(1);
+    return 2;
+  }
+  return 1;
+}
+
+}  // namespace
+
+std::string RequireName(const Invocation& inv, bool expression_name) {
+  if (inv.objc < 2 || StartsWithDash(inv.Arg(1)) || inv.Arg(1).empty()) {
+    throw ElementError{inv.kind + ": missing name (" + inv.kind + " NAME ?-option value ...?)", -1};
+  }
+  std::string name = inv.Arg(1);
+  if (expression_name) {
+    if (!IsIdentifier(name)) {
+      throw ElementError{inv.kind + ": name '" + name +
+                             "' must be letters, digits and _ (it is used in expressions as " +
+                             name + ".x)",
+                         1};
+    }
+    if (name == "t" || name == "pi" || name == "e") {
+      throw ElementError{inv.kind + ": name '" + name + "' is reserved in expressions", 1};
+    }
+  }
+  return name;
+}
+
+void FillBase(const Invocation& inv, scene::ElementBase& base) {
+  base.command = inv.site.command;
+  base.call_site = inv.site.call_site;
+  base.in_proc = inv.site.in_proc;
+  base.in_eval = inv.site.in_eval;
+  base.run_count = 1;
+}
+
+void SimulatorCommand(EvalContext& ctx, const Invocation& inv, std::string&) {
+  Options o(inv, 1, {"start", "finish", "step", "maxstep", "rtol", "atol", "collisions", "frames"});
+  scene::Simulator s;
+  FillBase(inv, s);
+  s.start = o.Number("start").value_or(s.start);
+  s.finish = o.Number("finish").value_or(s.finish);
+  if (!(s.finish > s.start)) {
+    const OptionValue* v = o.Has("finish") ? o.Get("finish") : o.Get("start");
+    throw ElementError{"simulator: -finish (" + std::to_string(s.finish) +
+                           ") must be greater than -start (" + std::to_string(s.start) + ")",
+                       v->arg};
+  }
+  s.step = o.Positive("step");
+  s.max_step = o.Positive("maxstep");
+  s.rtol = o.Positive("rtol");
+  s.atol = o.Positive("atol");
+  s.collisions = o.Bool("collisions").value_or(true);
+  s.frame_rate = o.Positive("frames").value_or(s.frame_rate);
+  RecordOptions(inv, o, s);
+  ctx.scene.simulator = std::move(s);
+}
+
+void BodyCommand(EvalContext& ctx, const Invocation& inv, std::string& name) {
+  name = RequireName(inv, true);
+  int first = 2;
+  bool positional_shape = inv.objc > 2 && !StartsWithDash(inv.Arg(2));
+  if (positional_shape) first = 3;
+  Options o(inv, first,
+            {"shape", "artbody", "init_pos", "init_rot", "init_dpos", "init_drot", "mass", "moment",
+             "color", "ct", "restitution", "static"});
+  CheckUnique(ctx.scene.bodies, inv, name);
+  scene::Body b;
+  FillBase(inv, b);
+  b.name = name;
+  if (positional_shape) {
+    if (o.Has("shape")) {
+      throw ElementError{
+          inv.kind + " '" + name + "': the shape is given twice (" + inv.Arg(2) + " and -shape)",
+          o.Get("shape")->arg};
+    }
+    b.shape = inv.Arg(2);
+  } else if (auto s = o.String("shape")) {
+    b.shape = *s;
+  } else {
+    throw ElementError{inv.kind + " '" + name + "': missing required option -shape", -1};
+  }
+  b.artbody = o.String("artbody").value_or("");
+  b.init_pos = o.Vector("init_pos").value_or(b.init_pos);
+  b.init_rot = o.Rotation("init_rot").value_or(b.init_rot);
+  b.init_dpos = o.Vector("init_dpos").value_or(b.init_dpos);
+  b.init_drot = o.Vector("init_drot").value_or(b.init_drot);
+  b.mass = o.Positive("mass");
+  b.moment = o.Moment("moment");
+  b.color = o.String("color").value_or("");
+  b.collision_test = o.Bool("ct").value_or(true);
+  b.restitution = o.NonNegative("restitution");
+  if (b.restitution && *b.restitution > 1.0) {
+    o.Fail(*o.Get("restitution"), "must be between 0 and 1");
+  }
+  b.is_static = o.Bool("static").value_or(false);
+  if (positional_shape) b.options.emplace_back("shape", MakeWord(inv, 2));
+  RecordOptions(inv, o, b);
+  ctx.scene.bodies.push_back(std::move(b));
+}
+
+void LinkCommand(EvalContext& ctx, const Invocation& inv, std::string&) {
+  Options o(inv, 1,
+            {"body1", "offset1", "body2", "offset2", "x", "y", "z", "trajectory", "tightness"});
+  scene::Link l;
+  FillBase(inv, l);
+  auto body1 = o.String("body1");
+  if (!body1) throw ElementError{"link: missing required option -body1", -1};
+  l.body1 = *body1;
+  l.offset1 = o.Vector("offset1").value_or(l.offset1);
+  l.body2 = o.String("body2").value_or("");
+  l.offset2 = o.Vector("offset2").value_or(l.offset2);
+  bool has_point = o.Has("x") || o.Has("y") || o.Has("z");
+  const char* axes[3] = {"x", "y", "z"};
+  for (int i = 0; i < 3; ++i) l.point[i] = o.Expression(axes[i]).value_or("0");
+  l.trajectory = o.String("trajectory").value_or("");
+  int targets = (l.body2.empty() ? 0 : 1) + (has_point ? 1 : 0) + (l.trajectory.empty() ? 0 : 1);
+  if (targets > 1) {
+    throw ElementError{"link: give only one of -body2, -x/-y/-z and -trajectory", -1};
+  }
+  if (o.Has("offset2") && l.body2.empty()) {
+    o.Fail(*o.Get("offset2"), "needs -body2");
+  }
+  if (!l.body2.empty() && l.body2 == l.body1) {
+    o.Fail(*o.Get("body2"), "links body '" + l.body1 + "' to itself");
+  }
+  l.tightness = o.Positive("tightness").value_or(l.tightness);
+  RecordOptions(inv, o, l);
+  ctx.scene.links.push_back(std::move(l));
+}
+
+namespace {
+
+template <typename T>
+void ReadVectorExpression(const Options& o, T& element) {
+  const char* axes[3] = {"x", "y", "z"};
+  for (int i = 0; i < 3; ++i) element.components[i] = o.Expression(axes[i]).value_or("0");
+  element.offset = o.Vector("offset");
+}
+
+}  // namespace
+
+void ForceCommand(EvalContext& ctx, const Invocation& inv, std::string&) {
+  Options o(inv, 1, {"body", "x", "y", "z", "offset", "gravitational", "torque"});
+  auto body = o.String("body");
+  if (!body) throw ElementError{inv.kind + ": missing required option -body", -1};
+  bool gravitational = o.Bool("gravitational").value_or(false);
+  if (o.Bool("torque").value_or(false)) {
+    if (gravitational) o.Fail(*o.Get("gravitational"), "cannot be used with -torque 1");
+    scene::Torque t;
+    FillBase(inv, t);
+    t.body = *body;
+    ReadVectorExpression(o, t);
+    RecordOptions(inv, o, t);
+    ctx.scene.torques.push_back(std::move(t));
+    return;
+  }
+  scene::Force f;
+  FillBase(inv, f);
+  f.body = *body;
+  ReadVectorExpression(o, f);
+  f.gravitational = gravitational;
+  RecordOptions(inv, o, f);
+  ctx.scene.forces.push_back(std::move(f));
+}
+
+void TorqueCommand(EvalContext& ctx, const Invocation& inv, std::string&) {
+  Options o(inv, 1, {"body", "x", "y", "z", "offset"});
+  auto body = o.String("body");
+  if (!body) throw ElementError{"torque: missing required option -body", -1};
+  scene::Torque t;
+  FillBase(inv, t);
+  t.body = *body;
+  ReadVectorExpression(o, t);
+  RecordOptions(inv, o, t);
+  ctx.scene.torques.push_back(std::move(t));
+}
+
+void TrajectoryCommand(EvalContext& ctx, const Invocation& inv, std::string& name) {
+  name = RequireName(inv, true);
+  Options o(inv, 2, {"points", "body", "state", "from", "to"});
+  CheckUnique(ctx.scene.trajectories, inv, name);
+  scene::Trajectory tr;
+  FillBase(inv, tr);
+  tr.name = name;
+  const OptionValue* pts = o.Get("points");
+  if (pts == nullptr) {
+    throw ElementError{"trajectory '" + name + "': missing required option -points", -1};
+  }
+  int n = 0;
+  Tcl_Obj** elems = nullptr;
+  if (Tcl_ListObjGetElements(nullptr, pts->obj, &n, &elems) != TCL_OK) {
+    o.Fail(*pts, "expects a list of {t x y z} points");
+  }
+  if (n == 0) o.Fail(*pts, "needs at least one {t x y z} point");
+  const std::string context = "trajectory: option '-points'";
+  for (int i = 0; i < n; ++i) {
+    std::vector<double> v = ToNumbers(elems[i], context, pts->arg);
+    if (v.size() != 4) {
+      o.Fail(*pts, "point " + std::to_string(i + 1) + " must be {t x y z}, got " +
+                       std::to_string(v.size()) + " numbers");
+    }
+    if (!tr.knots.empty() && !(v[0] > tr.knots.back().t)) {
+      o.Fail(*pts, "times must increase strictly (point " + std::to_string(i + 1) +
+                       " has t=" + ObjString(elems[i]).substr(0, 20) +
+                       " after t=" + std::to_string(tr.knots.back().t) + ")");
+    }
+    tr.knots.push_back({v[0], {v[1], v[2], v[3]}});
+  }
+  tr.body = o.String("body").value_or("");
+  if (const OptionValue* st = o.Get("state")) {
+    std::string s = ObjString(st->obj);
+    using State = scene::Trajectory::State;
+    if (s == "pos")
+      tr.state = State::kPos;
+    else if (s == "rot")
+      tr.state = State::kRot;
+    else if (s == "dpos")
+      tr.state = State::kDpos;
+    else if (s == "drot")
+      tr.state = State::kDrot;
+    else
+      o.Fail(*st, "expects pos, rot, dpos or drot but got '" + s + "'");
+    if (tr.body.empty()) o.Fail(*st, "needs -body");
+  } else if (!tr.body.empty()) {
+    tr.state = scene::Trajectory::State::kPos;
+  }
+  tr.from = o.Number("from");
+  tr.to = o.Number("to");
+  if ((tr.from || tr.to) && tr.body.empty()) {
+    o.Fail(*(o.Has("from") ? o.Get("from") : o.Get("to")), "needs -body");
+  }
+  if (tr.from && tr.to && !(*tr.to > *tr.from)) {
+    o.Fail(*o.Get("to"), "must be greater than -from");
+  }
+  RecordOptions(inv, o, tr);
+  ctx.scene.trajectories.push_back(std::move(tr));
+}
+
+void LightSourceCommand(EvalContext& ctx, const Invocation& inv, std::string& name) {
+  int first = OptionalName(inv, name);
+  Options o(inv, first, {"type", "pos", "dir", "color", "intensity"});
+  CheckUnique(ctx.scene.lights, inv, name);
+  scene::LightSource l;
+  FillBase(inv, l);
+  l.name = name;
+  if (const OptionValue* t = o.Get("type")) {
+    std::string s = ObjString(t->obj);
+    if (s == "point")
+      l.type = scene::LightSource::Type::kPoint;
+    else if (s == "directional")
+      l.type = scene::LightSource::Type::kDirectional;
+    else
+      o.Fail(*t, "expects point or directional but got '" + s + "'");
+  }
+  l.position = o.Vector("pos").value_or(l.position);
+  l.direction = o.Vector("dir").value_or(l.direction);
+  if (l.direction[0] == 0 && l.direction[1] == 0 && l.direction[2] == 0) {
+    o.Fail(*o.Get("dir"), "must not be the zero vector");
+  }
+  l.color = o.String("color").value_or(l.color);
+  l.intensity = o.NonNegative("intensity").value_or(l.intensity);
+  RecordOptions(inv, o, l);
+  ctx.scene.lights.push_back(std::move(l));
+}
+
+void ViewCommand(EvalContext& ctx, const Invocation& inv, std::string& name) {
+  int first = OptionalName(inv, name);
+  Options o(inv, first, {"pos", "rot", "scale", "center"});
+  CheckUnique(ctx.scene.views, inv, name);
+  scene::View v;
+  FillBase(inv, v);
+  v.name = name;
+  v.position = o.Vector("pos").value_or(v.position);
+  v.rotation = o.Rotation("rot").value_or(v.rotation);
+  v.scale = o.Positive("scale").value_or(v.scale);
+  v.center = o.Vector("center");
+  RecordOptions(inv, o, v);
+  ctx.scene.views.push_back(std::move(v));
+}
+
+// ---------------------------------------------------------------------------
+// Registration and the shared command procedure.
+
+namespace {
+
+using Handler = void (*)(EvalContext&, const Invocation&, std::string&);
+
+struct CommandEntry {
+  EvalContext* ctx;
+  const char* kind;
+  scene::ElementKind element;
+  Handler handler;
+};
+
+int RunElement(ClientData data, Tcl_Interp* interp, int objc, Tcl_Obj* const objv[]) {
+  auto* entry = static_cast<CommandEntry*>(data);
+  EvalContext& ctx = *entry->ctx;
+  Tcl_ResetResult(interp);
+  try {
+    Invocation inv;
+    inv.kind = entry->kind;
+    inv.objc = objc;
+    inv.objv = objv;
+    inv.site = LocateCommand(ctx, objc, objv);
+    if (Tcl_LimitExceeded(ctx.child)) {
+      Tcl_SetObjResult(interp, Tcl_NewStringObj("evaluation limit exceeded", -1));
+      return TCL_ERROR;
+    }
+    ++ctx.run_counts[inv.site.command.begin];
+    std::string name;
+    try {
+      entry->handler(ctx, inv, name);
+      Tcl_SetObjResult(interp, Tcl_NewStringObj(name.data(), static_cast<int>(name.size())));
+    } catch (const ElementError& e) {
+      ctx.AddError(e.message, inv.ArgSpan(e.arg));
+      if (!name.empty()) ctx.failed[entry->element].insert(name);
+    }
+  } catch (const std::exception& e) {
+    ctx.AddError(std::string(entry->kind) + ": internal error: " + e.what(), ctx.TopCommand().span);
+  } catch (...) {
+    ctx.AddError(std::string(entry->kind) + ": internal error", ctx.TopCommand().span);
+  }
+  return TCL_OK;
+}
+
+}  // namespace
+
+void InstallElementCommands(EvalContext& ctx) {
+  using K = scene::ElementKind;
+  static constexpr struct {
+    const char* name;
+    K kind;
+    Handler handler;
+  } kTable[] = {
+      {"simulator", K::kSimulator, SimulatorCommand},
+      {"shape_set", K::kShapeSet, ShapeSetCommand},
+      {"body", K::kBody, BodyCommand},
+      {"instance", K::kBody, BodyCommand},
+      {"link", K::kLink, LinkCommand},
+      {"force", K::kForce, ForceCommand},
+      {"torque", K::kTorque, TorqueCommand},
+      {"trajectory", K::kTrajectory, TrajectoryCommand},
+      {"lightsource", K::kLightSource, LightSourceCommand},
+      {"view", K::kView, ViewCommand},
+  };
+  for (const auto& row : kTable) {
+    auto entry =
+        std::make_shared<CommandEntry>(CommandEntry{&ctx, row.name, row.kind, row.handler});
+    std::string target = std::string("asgard_") + row.name;
+    Tcl_CreateObjCommand(ctx.master, target.c_str(), RunElement, entry.get(), nullptr);
+    Tcl_CreateAlias(ctx.child, row.name, ctx.master, target.c_str(), 0, nullptr);
+    ctx.keep_alive.push_back(std::move(entry));
+  }
+}
+
+}  // namespace asgard::lang

@@ -1,0 +1,381 @@
+// Evaluation driver: interpreters, limits, safety guards, error locations.
+//
+// Design:
+//  * A fresh master interpreter and a safe child ("scene") per evaluation;
+//    the child runs the script, the master hosts the element commands.  The
+//    child additionally loses `interp`, `after`, `vwait` and `update` (nested
+//    interpreters escape the limits; the others wait on the event loop).
+//  * Limits on the child: a command count (relative to what the setup used)
+//    and a wall-clock deadline checked at every limit check (granularity 1),
+//    which also catches `while 1 {}` -- a compiled empty loop runs no
+//    commands at all, so the command limit alone would never fire.
+//  * Memory: Tcl aborts the process when an allocation fails or a value
+//    passes 2 GB, so values must not get near that.  `string repeat` and
+//    `lrepeat` are replaced by versions that refuse results above 16 MB /
+//    4M elements; an object trace refuses any command whose argument is a
+//    string above 16 MB (stops doubling loops), and every 4096 commands or
+//    32 MB of argument text it compares the process heap with its size at the
+//    start (EvalLimits::memory_limit_mb).  A single command can still make a
+//    big value from small arguments (`format %900000000s x`); see
+//    docs/language.md.  The trace also keeps Tcl from inlining commands, which
+//    costs some speed; scenes are small.
+//  * Each top-level command is evaluated on its own (Tcl_EvalEx on its text),
+//    so an error in one does not stop the others and `info frame` lines are
+//    relative to a known command.  Errors are located from -errorline and the
+//    "while executing" text of errorInfo.
+//  * Nothing here throws out of Evaluate; Tcl state never outlives it.
+#include <malloc.h>
+#include <tcl.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <mutex>
+
+#include "core/lang/eval_context.h"
+#include "core/lang/lang.h"
+
+namespace asgard::lang {
+namespace {
+
+constexpr size_t kMaxValueBytes = size_t{16} << 20;
+constexpr size_t kMaxListElements = size_t{4} << 20;
+constexpr size_t kCheckEveryBytes = size_t{32} << 20;
+constexpr long kCheckEveryCommands = 4096;
+constexpr int kRecursionLimit = 400;
+
+void InitTcl() {
+  static std::once_flag once;
+  std::call_once(once, [] { Tcl_FindExecutable(nullptr); });
+}
+
+size_t HeapInUse() {
+  struct mallinfo2 mi = mallinfo2();
+  return mi.uordblks + mi.hblkhd;
+}
+
+struct GuardState {
+  EvalContext* ctx;
+  bool memory_exceeded = false;
+};
+
+void SetError(Tcl_Interp* interp, const std::string& message) {
+  Tcl_SetObjResult(interp, Tcl_NewStringObj(message.data(), static_cast<int>(message.size())));
+}
+
+std::string MegaBytes(size_t bytes) { return std::to_string(bytes >> 20) + " MB"; }
+
+int GuardTrace(ClientData data, Tcl_Interp* interp, int, const char*, Tcl_Command, int objc,
+               Tcl_Obj* const objv[]) {
+  auto* guard = static_cast<GuardState*>(data);
+  EvalContext& ctx = *guard->ctx;
+  if (guard->memory_exceeded) {
+    SetError(interp, "scene exceeded its memory limit (" +
+                         std::to_string(ctx.limits.memory_limit_mb) + " MB)");
+    return TCL_ERROR;
+  }
+  size_t bytes = 0;
+  for (int i = 0; i < objc; ++i) {
+    if (objv[i]->bytes == nullptr) continue;
+    size_t len = static_cast<size_t>(objv[i]->length);
+    if (len > kMaxValueBytes) {
+      SetError(interp, "value of " + std::to_string(len) + " bytes is above the scene limit of " +
+                           MegaBytes(kMaxValueBytes));
+      return TCL_ERROR;
+    }
+    bytes += len;
+  }
+  ctx.bytes_since_check += bytes;
+  if (++ctx.commands_since_check >= kCheckEveryCommands ||
+      ctx.bytes_since_check >= kCheckEveryBytes) {
+    ctx.commands_since_check = 0;
+    ctx.bytes_since_check = 0;
+    size_t now = HeapInUse();
+    size_t limit = ctx.limits.memory_limit_mb << 20;
+    if (now > ctx.heap_baseline && now - ctx.heap_baseline > limit) {
+      guard->memory_exceeded = true;
+      SetError(interp, "scene exceeded its memory limit (" +
+                           std::to_string(ctx.limits.memory_limit_mb) + " MB)");
+      return TCL_ERROR;
+    }
+  }
+  return TCL_OK;
+}
+
+int StringRepeat(ClientData, Tcl_Interp* interp, int objc, Tcl_Obj* const objv[]) {
+  if (objc != 3) {
+    SetError(interp, "wrong # args: should be \"string repeat string count\"");
+    return TCL_ERROR;
+  }
+  int count = 0;
+  if (Tcl_GetIntFromObj(interp, objv[2], &count) != TCL_OK) return TCL_ERROR;
+  int len = 0;
+  const char* s = Tcl_GetStringFromObj(objv[1], &len);
+  if (count <= 0 || len == 0) {
+    Tcl_ResetResult(interp);
+    return TCL_OK;
+  }
+  size_t total = static_cast<size_t>(len) * static_cast<size_t>(count);
+  if (total > kMaxValueBytes) {
+    SetError(interp, "string repeat: result of " + std::to_string(total) +
+                         " bytes is above the scene limit of " + MegaBytes(kMaxValueBytes));
+    return TCL_ERROR;
+  }
+  std::string out;
+  out.reserve(total);
+  for (int i = 0; i < count; ++i) out.append(s, len);
+  Tcl_SetObjResult(interp, Tcl_NewStringObj(out.data(), static_cast<int>(out.size())));
+  return TCL_OK;
+}
+
+int ListRepeat(ClientData, Tcl_Interp* interp, int objc, Tcl_Obj* const objv[]) {
+  if (objc < 2) {
+    SetError(interp, "wrong # args: should be \"lrepeat count ?value ...?\"");
+    return TCL_ERROR;
+  }
+  int count = 0;
+  if (Tcl_GetIntFromObj(interp, objv[1], &count) != TCL_OK) return TCL_ERROR;
+  if (count < 0) {
+    SetError(interp, "bad count \"" + std::to_string(count) + "\": must be integer >= 0");
+    return TCL_ERROR;
+  }
+  size_t per = static_cast<size_t>(objc - 2);
+  size_t total = per * static_cast<size_t>(count);
+  if (total > kMaxListElements) {
+    SetError(interp, "lrepeat: result of " + std::to_string(total) +
+                         " elements is above the scene limit of " +
+                         std::to_string(kMaxListElements) + " elements");
+    return TCL_ERROR;
+  }
+  std::vector<Tcl_Obj*> elems;
+  elems.reserve(total);
+  for (int i = 0; i < count; ++i) {
+    for (int k = 2; k < objc; ++k) elems.push_back(objv[k]);
+  }
+  Tcl_SetObjResult(interp, Tcl_NewListObj(static_cast<int>(elems.size()), elems.data()));
+  return TCL_OK;
+}
+
+// Makes the child safe enough and installs the guards.  Returns false (with
+// a message) if something essential could not be set up.
+bool SetUpChild(EvalContext& ctx, GuardState& guard, std::string& error) {
+  Tcl_Interp* child = ctx.child;
+  for (const char* name : {"interp", "after", "vwait", "update"}) {
+    if (Tcl_HideCommand(child, name, name) != TCL_OK) Tcl_ResetResult(child);
+  }
+  if (Tcl_EvalEx(child, "rename ::tcl::string::repeat {}; rename ::lrepeat {}", -1, 0) != TCL_OK) {
+    error = std::string("cannot install guards: ") + Tcl_GetStringResult(child);
+    return false;
+  }
+  Tcl_CreateObjCommand(ctx.master, "asgard_string_repeat", StringRepeat, nullptr, nullptr);
+  Tcl_CreateObjCommand(ctx.master, "asgard_lrepeat", ListRepeat, nullptr, nullptr);
+  if (Tcl_CreateAlias(child, "::tcl::string::repeat", ctx.master, "asgard_string_repeat", 0,
+                      nullptr) != TCL_OK ||
+      Tcl_CreateAlias(child, "::lrepeat", ctx.master, "asgard_lrepeat", 0, nullptr) != TCL_OK ||
+      Tcl_CreateAlias(child, "index", child, "lindex", 0, nullptr) != TCL_OK) {
+    error = std::string("cannot install guards: ") + Tcl_GetStringResult(child);
+    return false;
+  }
+  InstallElementCommands(ctx);
+  Tcl_SetRecursionLimit(child, kRecursionLimit);
+  Tcl_CreateObjTrace(child, 0, 0, GuardTrace, &guard, nullptr);
+
+  // Limits last, so that the setup does not count against them.
+  long used = 0;
+  if (Tcl_EvalEx(child, "info cmdcount", -1, 0) == TCL_OK) {
+    Tcl_GetLongFromObj(nullptr, Tcl_GetObjResult(child), &used);
+  }
+  Tcl_ResetResult(child);
+  long limit = std::max(1L, ctx.limits.command_limit);
+  Tcl_LimitSetCommands(child, static_cast<int>(std::min<long>(used + limit, 2'000'000'000L)));
+  Tcl_LimitTypeSet(child, TCL_LIMIT_COMMANDS);
+  Tcl_Time deadline;
+  Tcl_GetTime(&deadline);
+  long ms = std::max(1, ctx.limits.time_limit_ms);
+  deadline.sec += ms / 1000;
+  deadline.usec += (ms % 1000) * 1000;
+  if (deadline.usec >= 1'000'000) {
+    deadline.sec += 1;
+    deadline.usec -= 1'000'000;
+  }
+  Tcl_LimitSetTime(child, &deadline);
+  Tcl_LimitSetGranularity(child, TCL_LIMIT_TIME, 1);
+  Tcl_LimitSetGranularity(child, TCL_LIMIT_COMMANDS, 1);
+  Tcl_LimitTypeSet(child, TCL_LIMIT_TIME);
+  return true;
+}
+
+std::string FormatSeconds(int ms) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%g s", ms / 1000.0);
+  return buf;
+}
+
+std::string FirstLine(std::string s) {
+  size_t nl = s.find('\n');
+  if (nl != std::string::npos) s = s.substr(0, nl);
+  constexpr size_t kMax = 300;
+  if (s.size() > kMax) s = s.substr(0, kMax) + "...";
+  return s;
+}
+
+// The innermost command text quoted in errorInfo ("while executing\n\"...\"").
+std::string ExecutingHint(Tcl_Interp* child) {
+  const char* info = Tcl_GetVar(child, "errorInfo", TCL_GLOBAL_ONLY);
+  if (info == nullptr) return {};
+  std::string_view s(info);
+  size_t at = s.find("\n    while executing\n\"");
+  if (at == std::string_view::npos) at = s.find("\n    invoked from within\n\"");
+  if (at == std::string_view::npos) return {};
+  s = s.substr(s.find('"', at) + 1);
+  size_t end = s.find("\"\n");
+  if (end == std::string_view::npos) end = s.rfind('"');
+  if (end == std::string_view::npos) return {};
+  s = s.substr(0, end);
+  if (s.size() >= 3 && s.substr(s.size() - 3) == "...") s.remove_suffix(3);
+  return std::string(s.substr(0, std::min<size_t>(s.size(), 150)));
+}
+
+int ErrorLine(Tcl_Interp* child, int rc) {
+  Tcl_Obj* opts = Tcl_GetReturnOptions(child, rc);
+  Tcl_IncrRefCount(opts);
+  Tcl_Obj* key = Tcl_NewStringObj("-errorline", -1);
+  Tcl_IncrRefCount(key);
+  Tcl_Obj* value = nullptr;
+  int line = 0;
+  if (Tcl_DictObjGet(nullptr, opts, key, &value) == TCL_OK && value != nullptr) {
+    Tcl_GetIntFromObj(nullptr, value, &line);
+  }
+  Tcl_DecrRefCount(key);
+  Tcl_DecrRefCount(opts);
+  return line;
+}
+
+bool PastDeadline(const std::chrono::steady_clock::time_point& deadline) {
+  return std::chrono::steady_clock::now() >= deadline;
+}
+
+// Owns the interpreters of one evaluation.
+class Interps {
+ public:
+  explicit Interps(EvalContext& ctx) : ctx_(ctx) {
+    ctx.master = Tcl_CreateInterp();
+    if (ctx.master != nullptr) ctx.child = Tcl_CreateSlave(ctx.master, "scene", 1);
+  }
+  ~Interps() {
+    if (ctx_.master != nullptr) Tcl_DeleteInterp(ctx_.master);
+    ctx_.master = nullptr;
+    ctx_.child = nullptr;
+  }
+  Interps(const Interps&) = delete;
+  Interps& operator=(const Interps&) = delete;
+
+ private:
+  EvalContext& ctx_;
+};
+
+void Run(EvalContext& ctx) {
+  Interps interps(ctx);
+  scene::SourceSpan whole = ctx.map.lines().Span(0, 0);
+  if (ctx.child == nullptr) {
+    ctx.AddError("cannot create the scene interpreter", whole);
+    return;
+  }
+  GuardState guard{&ctx};
+  std::string setup_error;
+  ctx.heap_baseline = HeapInUse();
+  auto deadline = std::chrono::steady_clock::now() +
+                  std::chrono::milliseconds(std::max(1, ctx.limits.time_limit_ms));
+  if (!SetUpChild(ctx, guard, setup_error)) {
+    ctx.AddError(setup_error, whole);
+    return;
+  }
+  const auto& top = ctx.map.top_level();
+  std::string_view text = ctx.map.text();
+  for (size_t i = 0; i < top.size(); ++i) {
+    ctx.current_top = static_cast<int>(i);
+    const SourceCommand& cmd = ctx.map.commands()[top[i]];
+    int rc = Tcl_EvalEx(ctx.child, text.data() + cmd.span.begin, cmd.span.end - cmd.span.begin, 0);
+    if (rc == TCL_OK) continue;
+    if (rc == TCL_RETURN) break;  // `return` at top level ends the scene, as in a sourced file
+    int rel = rc == TCL_ERROR ? ErrorLine(ctx.child, rc) : 1;
+    int last_line = ctx.map.lines().LineOf(cmd.span.end);
+    int line = std::clamp(cmd.span.line + std::max(rel, 1) - 1, cmd.span.line, last_line);
+    std::string hint = rc == TCL_ERROR ? ExecutingHint(ctx.child) : std::string();
+    scene::SourceSpan span = ctx.map.SpanForLine(static_cast<int>(i), line, hint);
+    bool limit_hit = Tcl_LimitExceeded(ctx.child) != 0;
+    if (guard.memory_exceeded) {
+      ctx.AddError(
+          "scene exceeded its memory limit (" + std::to_string(ctx.limits.memory_limit_mb) + " MB)",
+          span);
+      break;
+    }
+    if (limit_hit) {
+      if (PastDeadline(deadline)) {
+        ctx.AddError(
+            "scene exceeded its time limit (" + FormatSeconds(ctx.limits.time_limit_ms) + ")",
+            span);
+      } else {
+        ctx.AddError("scene exceeded its command limit (" +
+                         std::to_string(ctx.limits.command_limit) + " commands)",
+                     span);
+      }
+      break;
+    }
+    if (rc == TCL_BREAK || rc == TCL_CONTINUE) {
+      ctx.AddError(std::string("invoked \"") + (rc == TCL_BREAK ? "break" : "continue") +
+                       "\" outside of a loop",
+                   span);
+      continue;
+    }
+    ctx.AddError(FirstLine(Tcl_GetStringResult(ctx.child)), span);
+    Tcl_ResetResult(ctx.child);
+  }
+  if (const auto& failure = ctx.map.failure()) {
+    std::string message = failure->message;
+    if (message == "missing close-brace" || message == "missing close-bracket" ||
+        message == "missing close-quote") {
+      message += " (the one opened here is never closed)";
+    }
+    ctx.AddError(message, failure->span);
+  }
+  FinishScene(ctx);
+}
+
+}  // namespace
+
+scene::Scene Evaluate(std::string_view text, const EvalLimits& limits) {
+  try {
+    InitTcl();
+    if (text.size() > static_cast<size_t>(kMaxValueBytes) * 4) {
+      scene::Scene s;
+      s.diagnostics.push_back({scene::Severity::kError, "scene text is too large", {0, 0, 1, 1}});
+      return s;
+    }
+    EvalContext ctx(text, limits);
+    Run(ctx);
+    return std::move(ctx.scene);
+  } catch (const std::exception& e) {
+    scene::Scene s;
+    s.diagnostics.push_back(
+        {scene::Severity::kError, std::string("internal error: ") + e.what(), {0, 0, 1, 1}});
+    return s;
+  } catch (...) {
+    scene::Scene s;
+    s.diagnostics.push_back({scene::Severity::kError, "internal error", {0, 0, 1, 1}});
+    return s;
+  }
+}
+
+std::string FormatDiagnostic(std::string_view filename, const scene::Diagnostic& d) {
+  std::string out(filename);
+  if (d.span.known()) {
+    out += ":" + std::to_string(d.span.line) + ":" + std::to_string(d.span.column);
+  }
+  out += d.severity == scene::Severity::kError ? ": error: " : ": warning: ";
+  out += d.message;
+  return out;
+}
+
+}  // namespace asgard::lang
