@@ -28,6 +28,7 @@
 // behind Tape's interface).
 #pragma once
 
+#include <cstddef>
 #include <cstdint>
 #include <functional>
 #include <memory>
@@ -44,16 +45,47 @@ using NodeId = uint32_t;
 
 enum class Op : uint8_t {
   // leaves
-  kConst, kTime, kVar, kExtern,
+  kConst,
+  kTime,
+  kVar,
+  kExtern,
   // arithmetic (kAdd and kMul are n-ary, canonical order)
-  kAdd, kMul, kPow,  // a - b is Add(a, Mul(-1, b)); a / b is Mul(a, Pow(b, -1))
+  kAdd,
+  kMul,
+  kPow,  // a - b is Add(a, Mul(-1, b)); a / b is Mul(a, Pow(b, -1))
   // functions of one argument
-  kSin, kCos, kTan, kAsin, kAcos, kAtan, kSinh, kCosh, kTanh,
-  kExp, kLog, kSqrt, kAbs, kFloor, kCeil, kSign,
+  kSin,
+  kCos,
+  kTan,
+  kAsin,
+  kAcos,
+  kAtan,
+  kSinh,
+  kCosh,
+  kTanh,
+  kExp,
+  kLog,
+  kSqrt,
+  kAbs,
+  kFloor,
+  kCeil,
+  kSign,
   // functions of two arguments
-  kAtan2, kMin, kMax, kFmod, kHypot,
+  kAtan2,
+  kMin,
+  kMax,
+  kFmod,
+  kHypot,
   // comparisons and logic: 1.0 for true, 0.0 for false; derivative 0
-  kLt, kLe, kGt, kGe, kEq, kNe, kAnd, kOr, kNot,
+  kLt,
+  kLe,
+  kGt,
+  kGe,
+  kEq,
+  kNe,
+  kAnd,
+  kOr,
+  kNot,
   // Select(c, a, b): c != 0 ? a : b
   kSelect,
 };
@@ -62,10 +94,10 @@ const char* OpName(Op op);
 
 struct Node {
   Op op = Op::kConst;
-  double value = 0.0;           // kConst
-  int32_t index = 0;            // kVar: variable; kExtern: function
-  int32_t order = 0;            // kExtern: derivative order
-  std::vector<NodeId> args;     // operands (kAdd/kMul: canonical order)
+  double value = 0.0;        // kConst
+  int32_t index = 0;         // kVar: variable; kExtern: function
+  int32_t order = 0;         // kExtern: derivative order
+  std::vector<NodeId> args;  // operands (kAdd/kMul: canonical order)
 };
 
 // Thrown by Parse on bad expression text.  `offset` is a byte offset into the
@@ -83,6 +115,12 @@ class ParseError : public std::runtime_error {
 class Pool {
  public:
   Pool();
+  ~Pool();
+  // Copies are deep (nodes, intern table and caches); moves are cheap.
+  Pool(const Pool& other);
+  Pool& operator=(const Pool& other);
+  Pool(Pool&& other) noexcept;
+  Pool& operator=(Pool&& other) noexcept;
 
   // Leaves.
   NodeId Const(double v);
@@ -98,6 +136,10 @@ class Pool {
   NodeId Neg(NodeId a);
   NodeId Pow(NodeId a, NodeId b);
   NodeId Sum(std::span<const NodeId> terms);
+  NodeId Product(std::span<const NodeId> factors);
+  // Tcl's a % b extended to reals: fmod(a, b), shifted by b when its sign
+  // differs from b's (so -7 % 3 == 2 as in Tcl).
+  NodeId Mod(NodeId a, NodeId b);
   // Apply a function or comparison op to its arguments (arity checked).
   NodeId Apply(Op op, std::span<const NodeId> args);
   NodeId Select(NodeId cond, NodeId a, NodeId b);
@@ -130,10 +172,16 @@ class Pool {
 
  private:
   NodeId Intern(Node n);
+  // Builds a node of `op` over `args` through the simplifying constructors
+  // (used to rebuild a node whose operands changed).
+  NodeId Rebuild(const Node& proto, std::span<const NodeId> args);
+  NodeId DerivativeImpl(NodeId e, int var_index);  // var_index < 0: time
+  NodeId DerivativeStep(NodeId e, int var_index, std::span<const NodeId> dargs);
+
   std::vector<Node> nodes_;
-  // hash table for interning, derivative caches, ... (implementation-defined)
+  // Intern table, per-node flags and the derivative cache (see pool.cc).
   struct Impl;
-  std::shared_ptr<Impl> impl_;
+  std::unique_ptr<Impl> impl_;
 };
 
 // Resolves a name in expression text ("b1.x", "tr1.y", "g") to a node, or
@@ -169,18 +217,20 @@ class Tape {
   size_t output_count() const { return outputs_.size(); }
 
  private:
+  // Register 0 holds t; constants are preloaded into their registers by
+  // Compile and never written by Evaluate.
   struct Instr {
-    Op op;
-    int32_t a = 0, b = 0, c = 0;  // register operands / var index / fn
-    int32_t order = 0;
-    double value = 0.0;
-    int32_t n = 0;                // for n-ary ops: count of operands in operand list
-    int32_t first = 0;            // index into operands_
+    uint8_t code = 0;  // tape.cc's instruction code
+    int32_t dst = 0;   // destination register
+    int32_t a = 0;     // register operand / var index / extern fn / operands_ start
+    int32_t b = 0;     // register operand / extern order / operand count
+    int32_t c = 0;     // third register operand (Select)
   };
   std::vector<Instr> code_;
-  std::vector<int32_t> operands_;
-  std::vector<int32_t> outputs_;  // register per output
+  std::vector<int32_t> operands_;  // operand registers of n-ary Add/Mul
+  std::vector<int32_t> outputs_;   // register per output
   mutable std::vector<double> regs_;
+  bool uses_extern_ = false;
 };
 
 }  // namespace asgard::expr

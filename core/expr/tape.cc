@@ -1,0 +1,197 @@
+// Tape: straight-line evaluation of a set of expressions.
+//
+// Design.  Compile walks the DAG below the outputs in post order (iteratively)
+// and gives every reachable node one register: register 0 holds t, constants
+// are stored into their registers once at compile time, and every other node
+// becomes one instruction writing its own register, so shared subexpressions
+// are computed once per Evaluate.  Instructions are small PODs dispatched by a
+// switch; binary Add/Mul, squares and reciprocals have their own codes, longer
+// sums and products read an operand list.  Evaluate allocates nothing and
+// uses the scalar functions of internal.h, so its results are bit-identical
+// to constant folding (sums and products accumulate left to right in the
+// canonical operand order).  The register file is mutable scratch: a Tape must
+// not be evaluated from two threads at once (copy it instead).
+#include <stdexcept>
+#include <unordered_map>
+
+#include "core/expr/expr.h"
+#include "core/expr/internal.h"
+
+namespace asgard::expr {
+namespace {
+
+// Instruction codes: an Op's own value for leaves, functions, comparisons,
+// logic and Select; the extra codes below for specialised arithmetic.
+constexpr uint8_t C(Op op) { return static_cast<uint8_t>(op); }
+constexpr uint8_t kAdd2 = 100;
+constexpr uint8_t kAddN = 101;
+constexpr uint8_t kMul2 = 102;
+constexpr uint8_t kMulN = 103;
+constexpr uint8_t kSquare = 104;
+constexpr uint8_t kRecip = 105;
+
+}  // namespace
+
+Tape Tape::Compile(const Pool& pool, std::span<const NodeId> outputs) {
+  Tape tape;
+  tape.regs_.push_back(0.0);  // t
+  std::unordered_map<NodeId, int32_t> reg;
+  auto fresh = [&tape](double init) {
+    tape.regs_.push_back(init);
+    return static_cast<int32_t>(tape.regs_.size() - 1);
+  };
+  auto visit = [&](NodeId id) {
+    const Node& n = pool.node(id);
+    if (n.op == Op::kConst) {
+      reg.emplace(id, fresh(n.value));
+      return;
+    }
+    if (n.op == Op::kTime) {
+      reg.emplace(id, 0);
+      return;
+    }
+    Instr in;
+    in.code = C(n.op);
+    switch (n.op) {
+      case Op::kVar:
+        in.a = n.index;
+        break;
+      case Op::kExtern:
+        in.a = n.index;
+        in.b = n.order;
+        tape.uses_extern_ = true;
+        break;
+      case Op::kAdd:
+      case Op::kMul:
+        if (n.args.size() == 2) {
+          in.code = n.op == Op::kAdd ? kAdd2 : kMul2;
+          in.a = reg.at(n.args[0]);
+          in.b = reg.at(n.args[1]);
+        } else {
+          in.code = n.op == Op::kAdd ? kAddN : kMulN;
+          in.a = static_cast<int32_t>(tape.operands_.size());
+          in.b = static_cast<int32_t>(n.args.size());
+          for (NodeId arg : n.args) tape.operands_.push_back(reg.at(arg));
+        }
+        break;
+      case Op::kPow: {
+        in.a = reg.at(n.args[0]);
+        in.b = reg.at(n.args[1]);
+        auto k = pool.ConstValue(n.args[1]);
+        if (k && *k == 2.0) in.code = kSquare;
+        if (k && *k == -1.0) in.code = kRecip;
+        break;
+      }
+      default:
+        in.a = reg.at(n.args[0]);
+        if (n.args.size() > 1) in.b = reg.at(n.args[1]);
+        if (n.args.size() > 2) in.c = reg.at(n.args[2]);
+        break;
+    }
+    in.dst = fresh(0.0);
+    reg.emplace(id, in.dst);
+    tape.code_.push_back(in);
+  };
+  for (NodeId out : outputs) {
+    if (out >= pool.size()) throw std::invalid_argument("expr::Tape::Compile: id out of range");
+    internal::PostOrder(
+        pool, out, [&](NodeId id) { return reg.count(id) != 0; }, visit);
+    tape.outputs_.push_back(reg.at(out));
+  }
+  return tape;
+}
+
+#define ASGARD_EXPR_UNARY(op)                  \
+  case C(Op::op):                              \
+    v = internal::UnaryValue(Op::op, r[in.a]); \
+    break;
+#define ASGARD_EXPR_BINARY(op)                           \
+  case C(Op::op):                                        \
+    v = internal::BinaryValue(Op::op, r[in.a], r[in.b]); \
+    break;
+
+void Tape::Evaluate(double t, const double* x, double* out, const ExternFn* ext) const {
+  if (uses_extern_ && (ext == nullptr || !*ext))
+    throw std::invalid_argument("expr::Tape::Evaluate: expression uses external functions");
+  double* r = regs_.data();
+  const int32_t* ops = operands_.data();
+  r[0] = t;
+  for (const Instr& in : code_) {
+    double v = 0.0;
+    switch (in.code) {
+      case C(Op::kVar):
+        v = x[in.a];
+        break;
+      case C(Op::kExtern):
+        v = (*ext)(in.a, in.b, t);
+        break;
+      case kAdd2:
+        v = r[in.a] + r[in.b];
+        break;
+      case kMul2:
+        v = r[in.a] * r[in.b];
+        break;
+      case kAddN: {
+        const int32_t* p = ops + in.a;
+        v = r[p[0]];
+        for (int32_t k = 1; k < in.b; ++k) v += r[p[k]];
+        break;
+      }
+      case kMulN: {
+        const int32_t* p = ops + in.a;
+        v = r[p[0]];
+        for (int32_t k = 1; k < in.b; ++k) v *= r[p[k]];
+        break;
+      }
+      case kSquare:
+        v = r[in.a] * r[in.a];
+        break;
+      case kRecip:
+        v = 1.0 / r[in.a];
+        break;
+      case C(Op::kSelect):
+        v = r[in.a] != 0.0 ? r[in.b] : r[in.c];
+        break;
+        ASGARD_EXPR_UNARY(kSin)
+        ASGARD_EXPR_UNARY(kCos)
+        ASGARD_EXPR_UNARY(kTan)
+        ASGARD_EXPR_UNARY(kAsin)
+        ASGARD_EXPR_UNARY(kAcos)
+        ASGARD_EXPR_UNARY(kAtan)
+        ASGARD_EXPR_UNARY(kSinh)
+        ASGARD_EXPR_UNARY(kCosh)
+        ASGARD_EXPR_UNARY(kTanh)
+        ASGARD_EXPR_UNARY(kExp)
+        ASGARD_EXPR_UNARY(kLog)
+        ASGARD_EXPR_UNARY(kSqrt)
+        ASGARD_EXPR_UNARY(kAbs)
+        ASGARD_EXPR_UNARY(kFloor)
+        ASGARD_EXPR_UNARY(kCeil)
+        ASGARD_EXPR_UNARY(kSign)
+        ASGARD_EXPR_UNARY(kNot)
+        ASGARD_EXPR_BINARY(kPow)
+        ASGARD_EXPR_BINARY(kAtan2)
+        ASGARD_EXPR_BINARY(kMin)
+        ASGARD_EXPR_BINARY(kMax)
+        ASGARD_EXPR_BINARY(kFmod)
+        ASGARD_EXPR_BINARY(kHypot)
+        ASGARD_EXPR_BINARY(kLt)
+        ASGARD_EXPR_BINARY(kLe)
+        ASGARD_EXPR_BINARY(kGt)
+        ASGARD_EXPR_BINARY(kGe)
+        ASGARD_EXPR_BINARY(kEq)
+        ASGARD_EXPR_BINARY(kNe)
+        ASGARD_EXPR_BINARY(kAnd)
+        ASGARD_EXPR_BINARY(kOr)
+      default:
+        break;
+    }
+    r[in.dst] = v;
+  }
+  for (size_t i = 0; i < outputs_.size(); ++i) out[i] = r[outputs_[i]];
+}
+
+#undef ASGARD_EXPR_UNARY
+#undef ASGARD_EXPR_BINARY
+
+}  // namespace asgard::expr
