@@ -17,6 +17,7 @@
 // inside [t0, t1].
 #include <algorithm>
 #include <cmath>
+#include <stdexcept>
 #include <unordered_set>
 
 #include "core/expr/expr.h"
@@ -116,6 +117,7 @@ std::optional<Affine> Difference(const Pool& pool, NodeId x, NodeId y) {
 }  // namespace
 
 std::vector<int> Pool::Variables(NodeId e) const {
+  if (e >= nodes_.size()) throw std::invalid_argument("expr::Pool::Variables: id out of range");
   std::vector<int> vars;
   std::unordered_set<NodeId> seen;
   std::vector<NodeId> stack{e};
@@ -132,9 +134,14 @@ std::vector<int> Pool::Variables(NodeId e) const {
   return vars;
 }
 
-bool Pool::DependsOnTime(NodeId e) const { return (impl_->flags[e] & kHasTime) != 0; }
+bool Pool::DependsOnTime(NodeId e) const {
+  if (e >= nodes_.size()) throw std::invalid_argument("expr::Pool::DependsOnTime: id out of range");
+  return (impl_->flags[e] & kHasTime) != 0;
+}
 
 std::vector<double> Pool::TimeBreakpoints(NodeId e, double t0, double t1) const {
+  if (e >= nodes_.size())
+    throw std::invalid_argument("expr::Pool::TimeBreakpoints: id out of range");
   if (!(t0 <= t1)) return {};
   BreakpointCollector out(t0, t1);
   std::unordered_set<NodeId> seen;

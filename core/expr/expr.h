@@ -195,6 +195,9 @@ using Resolver = std::function<std::optional<NodeId>(std::string_view name, Pool
 //   < <= > >= == !=, && ||, ?: , parentheses, and calls
 //   sin cos tan asin acos atan atan2 sinh cosh tanh exp log sqrt abs floor
 //   ceil sign min max fmod hypot pow.
+// Precedence is Tcl's: unary - + ! bind tighter than ** (-2**2 == 4); all
+// numbers are doubles (7/2 == 3.5); a % b has the sign of b as in Tcl.
+// Nesting deeper than 200 levels is rejected.
 // Throws ParseError with the offset of the problem (unknown name, bad token,
 // unbalanced parenthesis, wrong argument count, trailing text, empty text).
 NodeId Parse(std::string_view text, Pool& pool, const Resolver& resolve);

@@ -24,6 +24,8 @@ TEST(Analysis, DependsOnTimeSeesTimeAndExternals) {
   EXPECT_TRUE(pool.DependsOnTime(P(pool, "ext1.d2*x")));
   EXPECT_FALSE(pool.DependsOnTime(P(pool, "x*y + 3")));
   EXPECT_FALSE(pool.DependsOnTime(P(pool, "t - t + x")));
+  EXPECT_THROW(pool.DependsOnTime(99999), std::invalid_argument);
+  EXPECT_THROW(pool.Variables(99999), std::invalid_argument);
 }
 
 struct BreakpointCase {
