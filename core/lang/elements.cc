@@ -33,12 +33,27 @@ const SourceWord* Invocation::ArgWord(int i) const {
 
 std::string Invocation::Arg(int i) const { return ObjString(objv[i]); }
 
+namespace {
+constexpr size_t kMaxDiagnostics = 200;
+
+void AddDiagnostic(scene::Scene& s, scene::Severity severity, std::string message,
+                   const scene::SourceSpan& span) {
+  if (s.diagnostics.size() > kMaxDiagnostics) return;
+  if (s.diagnostics.size() == kMaxDiagnostics) {
+    s.diagnostics.push_back(
+        {scene::Severity::kError, "too many errors; the rest are not reported", span});
+    return;
+  }
+  s.diagnostics.push_back({severity, std::move(message), span});
+}
+}  // namespace
+
 void EvalContext::AddError(std::string message, const scene::SourceSpan& span) {
-  scene.diagnostics.push_back({scene::Severity::kError, std::move(message), span});
+  AddDiagnostic(scene, scene::Severity::kError, std::move(message), span);
 }
 
 void EvalContext::AddWarning(std::string message, const scene::SourceSpan& span) {
-  scene.diagnostics.push_back({scene::Severity::kWarning, std::move(message), span});
+  AddDiagnostic(scene, scene::Severity::kWarning, std::move(message), span);
 }
 
 namespace {
@@ -111,8 +126,8 @@ void SimulatorCommand(EvalContext& ctx, const Invocation& inv, std::string&) {
   s.finish = o.Number("finish").value_or(s.finish);
   if (!(s.finish > s.start)) {
     const OptionValue* v = o.Has("finish") ? o.Get("finish") : o.Get("start");
-    throw ElementError{"simulator: -finish (" + std::to_string(s.finish) +
-                           ") must be greater than -start (" + std::to_string(s.start) + ")",
+    throw ElementError{"simulator: -finish (" + FormatNumber(s.finish) +
+                           ") must be greater than -start (" + FormatNumber(s.start) + ")",
                        v->arg};
   }
   s.step = o.Positive("step");
@@ -270,9 +285,8 @@ void TrajectoryCommand(EvalContext& ctx, const Invocation& inv, std::string& nam
                        std::to_string(v.size()) + " numbers");
     }
     if (!tr.knots.empty() && !(v[0] > tr.knots.back().t)) {
-      o.Fail(*pts, "times must increase strictly (point " + std::to_string(i + 1) +
-                       " has t=" + ObjString(elems[i]).substr(0, 20) +
-                       " after t=" + std::to_string(tr.knots.back().t) + ")");
+      o.Fail(*pts, "times must increase strictly (point " + std::to_string(i + 1) + " has t=" +
+                       FormatNumber(v[0]) + " after t=" + FormatNumber(tr.knots.back().t) + ")");
     }
     tr.knots.push_back({v[0], {v[1], v[2], v[3]}});
   }

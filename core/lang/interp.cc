@@ -16,8 +16,9 @@
 //    string above 16 MB (stops doubling loops), and every 4096 commands or
 //    32 MB of argument text it compares the process heap with its size at the
 //    start (EvalLimits::memory_limit_mb).  A single command can still make a
-//    big value from small arguments (`format %900000000s x`); see
-//    docs/language.md.  The trace also keeps Tcl from inlining commands, which
+//    big value from small arguments (`string map`, `regsub` on a large
+//    input); see docs/language.md.  `format`/`binary format` specs with
+//    fields wider than 16 MB are refused.  The trace also keeps Tcl from inlining commands, which
 //    costs some speed; scenes are small.
 //  * Each top-level command is evaluated on its own (Tcl_EvalEx on its text),
 //    so an error in one does not stop the others and `info frame` lines are
@@ -66,6 +67,38 @@ void SetError(Tcl_Interp* interp, const std::string& message) {
 
 std::string MegaBytes(size_t bytes) { return std::to_string(bytes >> 20) + " MB"; }
 
+// True if a `format` / `binary format` spec asks for a field wider than the
+// value limit (digit runs in the spec, or `*` with a huge argument).
+bool HugeFormat(int objc, Tcl_Obj* const objv[]) {
+  std::string_view name = Tcl_GetString(objv[0]);
+  if (name.substr(0, 2) == "::") name.remove_prefix(2);
+  int spec = -1;
+  if (name == "format" && objc >= 2) spec = 1;
+  if (name == "binary" && objc >= 3 && std::string_view(Tcl_GetString(objv[1])) == "format")
+    spec = 2;
+  if (spec < 0) return false;
+  std::string_view f = Tcl_GetString(objv[spec]);
+  size_t run = 0;
+  for (char c : f) {
+    if (c >= '0' && c <= '9') {
+      run = std::min(run * 10 + static_cast<size_t>(c - '0'), kMaxValueBytes + 1);
+      if (run > kMaxValueBytes) return true;
+    } else {
+      run = 0;
+    }
+  }
+  if (f.find('*') == std::string_view::npos) return false;
+  for (int i = spec + 1; i < objc; ++i) {
+    Tcl_WideInt w = 0;
+    if (Tcl_GetWideIntFromObj(nullptr, objv[i], &w) == TCL_OK &&
+        (w > static_cast<Tcl_WideInt>(kMaxValueBytes) ||
+         w < -static_cast<Tcl_WideInt>(kMaxValueBytes))) {
+      return true;
+    }
+  }
+  return false;
+}
+
 int GuardTrace(ClientData data, Tcl_Interp* interp, int, const char*, Tcl_Command, int objc,
                Tcl_Obj* const objv[]) {
   auto* guard = static_cast<GuardState*>(data);
@@ -87,6 +120,11 @@ int GuardTrace(ClientData data, Tcl_Interp* interp, int, const char*, Tcl_Comman
     bytes += len;
   }
   ctx.bytes_since_check += bytes;
+  if (objc >= 2 && HugeFormat(objc, objv)) {
+    SetError(interp,
+             "format: field width is above the scene limit of " + MegaBytes(kMaxValueBytes));
+    return TCL_ERROR;
+  }
   if (++ctx.commands_since_check >= kCheckEveryCommands ||
       ctx.bytes_since_check >= kCheckEveryBytes) {
     ctx.commands_since_check = 0;
@@ -220,8 +258,10 @@ std::string FirstLine(std::string s) {
   return s;
 }
 
-// The innermost command text quoted in errorInfo ("while executing\n\"...\"").
-std::string ExecutingHint(Tcl_Interp* child) {
+// The innermost command text quoted in errorInfo ("while executing\n\"...\""),
+// and whether Tcl shortened it.
+std::string ExecutingHint(Tcl_Interp* child, bool* truncated) {
+  *truncated = false;
   const char* info = Tcl_GetVar(child, "errorInfo", TCL_GLOBAL_ONLY);
   if (info == nullptr) return {};
   std::string_view s(info);
@@ -233,8 +273,25 @@ std::string ExecutingHint(Tcl_Interp* child) {
   if (end == std::string_view::npos) end = s.rfind('"');
   if (end == std::string_view::npos) return {};
   s = s.substr(0, end);
-  if (s.size() >= 3 && s.substr(s.size() - 3) == "...") s.remove_suffix(3);
+  if (s.size() >= 3 && s.substr(s.size() - 3) == "...") {
+    s.remove_suffix(3);
+    *truncated = true;
+  }
   return std::string(s.substr(0, std::min<size_t>(s.size(), 150)));
+}
+
+// Adds a hint to "invalid command name" errors for commands a safe scene
+// interpreter does not offer.
+std::string ExplainError(std::string message) {
+  static constexpr const char* kUnsafe[] = {
+      "exec", "open",   "file",  "socket", "source", "load",       "cd",       "exit",   "glob",
+      "pwd",  "interp", "after", "vwait",  "update", "fconfigure", "encoding", "unload", "puts"};
+  for (const char* name : kUnsafe) {
+    if (message == std::string("invalid command name \"") + name + "\"") {
+      return message + " (not available in scene scripts: they run in a safe interpreter)";
+    }
+  }
+  return message;
 }
 
 int ErrorLine(Tcl_Interp* child, int rc) {
@@ -302,8 +359,9 @@ void Run(EvalContext& ctx) {
     int rel = rc == TCL_ERROR ? ErrorLine(ctx.child, rc) : 1;
     int last_line = ctx.map.lines().LineOf(cmd.span.end);
     int line = std::clamp(cmd.span.line + std::max(rel, 1) - 1, cmd.span.line, last_line);
-    std::string hint = rc == TCL_ERROR ? ExecutingHint(ctx.child) : std::string();
-    scene::SourceSpan span = ctx.map.SpanForLine(static_cast<int>(i), line, hint);
+    bool truncated = false;
+    std::string hint = rc == TCL_ERROR ? ExecutingHint(ctx.child, &truncated) : std::string();
+    scene::SourceSpan span = ctx.map.ErrorSpan(static_cast<int>(i), line, hint, truncated);
     bool limit_hit = Tcl_LimitExceeded(ctx.child) != 0;
     if (guard.memory_exceeded) {
       ctx.AddError(
@@ -329,7 +387,7 @@ void Run(EvalContext& ctx) {
                    span);
       continue;
     }
-    ctx.AddError(FirstLine(Tcl_GetStringResult(ctx.child)), span);
+    ctx.AddError(ExplainError(FirstLine(Tcl_GetStringResult(ctx.child))), span);
     Tcl_ResetResult(ctx.child);
   }
   if (const auto& failure = ctx.map.failure()) {

@@ -12,6 +12,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <numbers>
 
 namespace asgard::lang {
@@ -69,6 +70,12 @@ std::string ObjString(Tcl_Obj* obj) {
   int len = 0;
   const char* s = Tcl_GetStringFromObj(obj, &len);
   return std::string(s, len);
+}
+
+std::string FormatNumber(double v) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%g", v);
+  return buf;
 }
 
 double ToNumber(Tcl_Obj* obj, const std::string& context, int arg) {

@@ -67,5 +67,7 @@ void RecordOptions(const Invocation& inv, const Options& opts, scene::ElementBas
 scene::Word MakeWord(const Invocation& inv, int arg);
 
 std::string ObjString(Tcl_Obj* obj);
+// Shortest readable form of a number ("%g").
+std::string FormatNumber(double v);
 
 }  // namespace asgard::lang

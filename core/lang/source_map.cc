@@ -184,17 +184,27 @@ std::vector<const SourceWord*> SourceMap::ProcBodies(std::string_view name) cons
   return out;
 }
 
-scene::SourceSpan SourceMap::SpanForLine(int top, int line, std::string_view hint) const {
-  const SourceCommand* by_hint = nullptr;
+scene::SourceSpan SourceMap::ErrorSpan(int top, int line, std::string_view hint,
+                                       bool truncated) const {
+  hint = TrimCommandText(hint);
+  if (!hint.empty()) {
+    std::vector<const SourceCommand*> inside, anywhere;
+    for (const auto& cmd : commands_) {
+      bool match = truncated ? cmd.text.compare(0, hint.size(), hint) == 0 : cmd.text == hint;
+      if (!match) continue;
+      (cmd.top == top ? inside : anywhere).push_back(&cmd);
+    }
+    for (const auto* c : inside) {
+      if (c->span.line == line) return c->span;
+    }
+    if (!inside.empty()) return inside.front()->span;
+    if (anywhere.size() == 1) return anywhere.front()->span;
+  }
   const SourceCommand* deepest = nullptr;
   for (const auto& cmd : commands_) {
     if (cmd.top != top || cmd.span.line != line) continue;
-    if (!hint.empty() && by_hint == nullptr && cmd.text.compare(0, hint.size(), hint) == 0) {
-      by_hint = &cmd;
-    }
     if (deepest == nullptr || cmd.depth > deepest->depth) deepest = &cmd;
   }
-  if (by_hint != nullptr) return by_hint->span;
   if (deepest != nullptr) return deepest->span;
   int start = lines_.LineStart(line);
   int end = start;

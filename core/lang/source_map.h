@@ -77,11 +77,13 @@ class SourceMap {
   // "::" ignored); empty when there are none.
   std::vector<const SourceWord*> ProcBodies(std::string_view name) const;
 
-  // The best span for an error reported at `line` inside top-level command
-  // `top`: a command starting on that line whose text starts with `hint`
-  // (when given), else the most deeply nested command starting there, else
-  // the non-blank part of the line.
-  scene::SourceSpan SpanForLine(int top, int line, std::string_view hint) const;
+  // The best span for an error reported by Tcl: `hint` is the text of the
+  // failing command as quoted in errorInfo (a prefix when `truncated`),
+  // `line` the absolute line from -errorline inside top-level command `top`.
+  // Prefers a command with that text inside `top` (on `line` if several),
+  // then a unique one anywhere (a proc body), then the most deeply nested
+  // command starting on `line`, then the non-blank part of the line.
+  scene::SourceSpan ErrorSpan(int top, int line, std::string_view hint, bool truncated) const;
 
  private:
   void ParseScript(int begin, int end, int top, int depth, bool top_level);

@@ -1,0 +1,215 @@
+// Scene language: a catalogue of bad inputs.  Each must evaluate without
+// crashing or hanging and report an error at the expected place.
+#include <gtest/gtest.h>
+
+#include <chrono>
+#include <string>
+
+#include "core/lang/lang.h"
+
+namespace asgard::lang {
+namespace {
+
+using scene::Scene;
+
+constexpr const char* kBox = "shape_set box -desc {-sub {-box {1 1 1}}}\n";
+
+struct BadInput {
+  const char* name;
+  std::string text;
+  int line;          // expected line of the diagnostic
+  int column;        // expected column, 0 = not checked
+  const char* what;  // substring of the message
+};
+
+std::string B(const char* rest) { return std::string(kBox) + rest; }
+
+std::vector<BadInput> Catalogue() {
+  return {
+      {"UnknownCommand", B("nosuchcmd 1 2\nbody b1 -shape box\n"), 2, 1,
+       "invalid command name \"nosuchcmd\""},
+      {"UnknownOption", B("body b1 -shape box -foo 1\n"), 2, 20,
+       "body: unknown option '-foo' (expected one of: -shape,"},
+      {"MissingOptionValue", B("body b1 -shape box -init_pos\n"), 2, 20,
+       "body: option '-init_pos' needs a value"},
+      {"BodyWithoutShape", "body b1 -init_pos {1 2 3}\n", 1, 1, "missing required option -shape"},
+      {"UnknownShape", "body b1 -shape nope\n", 1, 16, "unknown shape_set 'nope'"},
+      {"UnknownBodyInLink", B("link -body1 zz -x 0\n"), 2, 13, "link: unknown body 'zz'"},
+      {"UnknownBodyInForce", B("force -body qq -y 1\n"), 2, 13, "force: unknown body 'qq'"},
+      {"NonNumericVector", B("body b1 -shape box -init_pos {a b c}\n"), 2, 30,
+       "expects a number but got 'a'"},
+      {"VectorOfWrongLength", B("body b1 -shape box -init_pos {1 2}\n"), 2, 30,
+       "expects 3 numbers"},
+      {"ZeroMass", B("body b1 -shape box -mass 0\n"), 2, 26, "must be greater than 0"},
+      {"NegativeMass", B("body b1 -shape box -mass -1\n"), 2, 26, "must be greater than 0"},
+      {"NanInVector", B("body b1 -shape box -init_pos {NaN 0 0}\n"), 2, 30,
+       "must be a finite number"},
+      {"InfInVector", B("body b1 -shape box -init_dpos {0 Inf 0}\n"), 2, 31,
+       "must be a finite number"},
+      {"ZeroQuaternion", B("body b1 -shape box -init_rot {0 0 0 0}\n"), 2, 30, "zero quaternion"},
+      {"NegativeMoment", B("body b1 -shape box -moment -1\n"), 2, 28, "positive definite"},
+      {"MomentBreakingTheTriangleInequality", B("body b1 -shape box -moment {1 1 5}\n"), 2, 28,
+       "triangle inequality"},
+      {"AsymmetricMoment", B("body b1 -shape box -moment {1 2 3 4 5 6 7 8 9}\n"), 2, 28,
+       "symmetric"},
+      {"SphereRadiusZero", "shape_set s -desc {-sub {-sphere 0}}\n", 1, 19,
+       "radius must be greater than 0"},
+      {"PieceWithThreePoints", "shape_set s -desc {-sub {-vertices {{0 0 0} {1 0 0} {0 1 0}}}}\n",
+       1, 19, "at least 4 points, got 3"},
+      {"UnknownDescKey", "shape_set s -desc {-sub {-cone 1}}\n", 1, 19, "unknown key '-cone'"},
+      {"EndlessLoop", B("\nwhile 1 {}\nbody b1 -shape box\n"), 3, 1,
+       "scene exceeded its time limit (0.3 s)"},
+      {"EndlessCountingLoop", B("set i 0\nwhile 1 {incr i}\n"), 3, 0,
+       "scene exceeded its command limit (100000 commands)"},
+      {"DeepRecursion", B("proc f {} {f}; f\n"), 2, 16, "too many nested evaluations"},
+      {"UnbalancedOpenBrace", B("body b1 -shape box -init_pos {1 2\n  3\nset b 2\n"), 2, 30,
+       "missing close-brace"},
+      {"MissingCloseBracket", B("body b1 -shape box -init_pos [list 1 2 3\nset b 2\n"), 2, 30,
+       "missing close-bracket"},
+      {"ExtraCloseBracketAfterBrace", B("body b1 -shape box -init_pos {1 2 3}]\n"), 2, 37,
+       "extra characters after close-brace"},
+      {"ExtraCloseBracketAfterCommand", B("body b1 -shape box -init_pos [list 1 2 3]]\n"), 2, 30,
+       "expects a number but got '3]'"},
+      {"UnbalancedQuote", B("body b1 -shape \"box\n"), 2, 16, "missing close-quote"},
+      {"DuplicateBodyName", B("body b1 -shape box\nbody b1 -shape box\n"), 3, 6,
+       "'b1' is already defined at line 2"},
+      {"TrajectoryWithDecreasingTimes", "trajectory tr -points {{0 1 2 3} {2 1 2 3} {1 0 0 0}}\n",
+       1, 23, "times must increase strictly (point 3 has t=1 after t=2)"},
+      {"TrajectoryWithoutPoints", "trajectory tr -points {}\n", 1, 23, "at least one"},
+      {"TrajectoryStateWithoutBody", "trajectory tr -points {{0 0 0 0}} -state pos\n", 1, 42,
+       "needs -body"},
+      {"SimulatorFinishBeforeStart", "simulator -start 5 -finish 1\n", 1, 28,
+       "-finish (1) must be greater than -start (5)"},
+      {"ExecIsUnsafe", "exec ls\n", 1, 1, "invalid command name \"exec\""},
+      {"OpenIsUnsafe", "open /etc/passwd\n", 1, 1, "invalid command name \"open\""},
+      {"NestedInterpretersAreUnavailable", "interp create x\n", 1, 1,
+       "invalid command name \"interp\""},
+      {"HugeStringRepeat", "set x [string repeat x 1000000000]\n", 1, 8, "above the scene limit"},
+      {"HugeListRepeat", "set x [lrepeat 100000000 a]\n", 1, 8, "above the scene limit"},
+      {"DoublingString", "set s x\nwhile 1 {append s $s}\n", 2, 0, "above the scene limit"},
+      {"HugeFormatWidth", "set s [format %900000000s x]\n", 1, 0, "above the scene limit"},
+      {"BadCollisionFlag", B("body b1 -shape box -ct maybe\n"), 2, 24, "expects 0 or 1"},
+      {"LinkWithTwoTargets",
+       B("body a -shape box\nbody b -shape box\n"
+         "link -body1 a -body2 b -x 0\n"),
+       4, 1, "only one of -body2"},
+      {"LinkToTheSameBody", B("body a -shape box\nlink -body1 a -body2 a\n"), 3, 22, "to itself"},
+      {"BodyNameNotUsableInExpressions", B("body a.b -shape box\n"), 2, 6,
+       "must be letters, digits and _"},
+      {"BreakOutsideALoop", "break\n", 1, 1, "outside of a loop"},
+      {"ForceOnABodyThatFailed", B("body a -shape box -mass 0\nforce -body a -y 1\n"), 3, 13,
+       "body 'a' was not created because of an earlier error"},
+      {"ZeroLightDirection", "lightsource -dir {0 0 0}\n", 1, 18, "zero vector"},
+      {"ViewScaleZero", "view -scale 0\n", 1, 13, "must be greater than 0"},
+      {"OptionNameExpected", B("body b1 -shape box 12\n"), 2, 20, "expected an option name"},
+  };
+}
+
+class LangBadInput : public ::testing::TestWithParam<BadInput> {};
+
+TEST_P(LangBadInput, ReportsAnErrorAtTheRightPlaceWithoutCrashing) {
+  const BadInput& in = GetParam();
+  EvalLimits limits;
+  limits.command_limit = 100000;
+  limits.time_limit_ms = 300;
+  auto start = std::chrono::steady_clock::now();
+  Scene s = Evaluate(in.text, limits);
+  double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  EXPECT_LT(seconds, 3.0);
+  ASSERT_TRUE(s.has_errors()) << in.text;
+  std::string all;
+  bool found = false;
+  for (const auto& d : s.diagnostics) {
+    all += FormatDiagnostic("scene", d) + "\n";
+    EXPECT_GT(d.span.line, 0) << d.message;
+    EXPECT_GT(d.span.column, 0) << d.message;
+    if (d.message.find(in.what) == std::string::npos) continue;
+    if (d.span.line != in.line) continue;
+    if (in.column != 0 && d.span.column != in.column) continue;
+    found = true;
+  }
+  EXPECT_TRUE(found) << "expected line " << in.line << " col " << in.column << " '" << in.what
+                     << "', got:\n"
+                     << all;
+}
+
+INSTANTIATE_TEST_SUITE_P(Catalogue, LangBadInput, ::testing::ValuesIn(Catalogue()),
+                         [](const ::testing::TestParamInfo<BadInput>& info) {
+                           return std::string(info.param.name);
+                         });
+
+TEST(LangRecovery, ASceneWithABadBodyStillYieldsTheOtherBodies) {
+  std::string text = std::string(kBox) +
+                     "body b1 -shape box -init_pos {1 0 0}\n"
+                     "body b2 -shape box -init_pos {oops 0 0}\n"
+                     "body b3 -shape box -init_pos {3 0 0}\n";
+  Scene s = Evaluate(text);
+  ASSERT_EQ(s.diagnostics.size(), 1u);
+  EXPECT_EQ(s.diagnostics[0].span.line, 3);
+  ASSERT_EQ(s.bodies.size(), 2u);
+  EXPECT_EQ(s.bodies[0].name, "b1");
+  EXPECT_EQ(s.bodies[1].name, "b3");
+}
+
+TEST(LangRecovery, AnErrorInALoopBodyDoesNotStopTheLoop) {
+  std::string text = std::string(kBox) +
+                     "foreach m {1 0 2} {\n"
+                     "  body b$m -shape box -mass $m\n"
+                     "}\n";
+  Scene s = Evaluate(text);
+  ASSERT_EQ(s.diagnostics.size(), 1u);
+  EXPECT_EQ(s.diagnostics[0].span.line, 3);
+  EXPECT_EQ(s.bodies.size(), 2u);
+}
+
+TEST(LangRecovery, CommandsBeforeAParseErrorStillMakeElements) {
+  std::string text = std::string(kBox) +
+                     "body b1 -shape box\n"
+                     "body b2 -shape box -init_pos {1 2 3\n"
+                     "body b3 -shape box\n";
+  Scene s = Evaluate(text);
+  ASSERT_EQ(s.diagnostics.size(), 1u);
+  EXPECT_EQ(s.diagnostics[0].span.line, 3);
+  EXPECT_EQ(s.diagnostics[0].span.column, 30);
+  ASSERT_EQ(s.bodies.size(), 1u);
+  EXPECT_EQ(s.bodies[0].name, "b1");
+}
+
+TEST(LangRecovery, ATclErrorAbortsOnlyItsOwnTopLevelCommand) {
+  std::string text = std::string(kBox) +
+                     "foreach i {1 2 3} {\n"
+                     "  body b$i -shape box\n"
+                     "  if {$i == 2} { error \"stop here\" }\n"
+                     "}\n"
+                     "body after -shape box\n";
+  Scene s = Evaluate(text);
+  ASSERT_EQ(s.diagnostics.size(), 1u);
+  EXPECT_EQ(s.diagnostics[0].message, "stop here");
+  EXPECT_EQ(s.diagnostics[0].span.line, 4);
+  EXPECT_EQ(s.bodies.size(), 3u);  // b1 b2 after
+}
+
+TEST(LangRecovery, ManyErrorsAreCapped) {
+  std::string text = "for {set i 0} {$i < 1000} {incr i} { body b$i -shape box -mass 0 }\n";
+  Scene s = Evaluate(text);
+  EXPECT_LE(s.diagnostics.size(), 201u);
+  EXPECT_GE(s.diagnostics.size(), 200u);
+}
+
+TEST(LangRecovery, EmptyAndCommentOnlyScenesAreFine) {
+  EXPECT_TRUE(Evaluate("").diagnostics.empty());
+  EXPECT_TRUE(Evaluate("# nothing here\n\n   \n").diagnostics.empty());
+}
+
+TEST(LangRecovery, BinaryAndOddTextDoesNotCrash) {
+  std::string junk;
+  for (int i = 0; i < 2000; ++i) junk.push_back(static_cast<char>((i * 7919) % 251 + 1));
+  Scene s = Evaluate(junk);
+  SUCCEED();
+  std::string nul_text("body a -shape b\0c\n", 18);
+  s = Evaluate(nul_text);
+  EXPECT_TRUE(s.has_errors());
+}
+
+}  // namespace
+}  // namespace asgard::lang
