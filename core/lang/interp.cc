@@ -118,6 +118,12 @@ int GuardTrace(ClientData data, Tcl_Interp* interp, int, const char*, Tcl_Comman
       return TCL_ERROR;
     }
     bytes += len;
+    if (len >= static_cast<size_t>(kMaxBracketDepth) &&
+        FindDeepBracket(std::string_view(objv[i]->bytes, len)) >= 0) {
+      SetError(interp, "brackets nested more than " + std::to_string(kMaxBracketDepth) +
+                           " deep are not allowed in scene scripts");
+      return TCL_ERROR;
+    }
   }
   ctx.bytes_since_check += bytes;
   if (objc >= 2 && HugeFormat(objc, objv)) {
@@ -409,6 +415,14 @@ scene::Scene Evaluate(std::string_view text, const EvalLimits& limits) {
     if (text.size() > static_cast<size_t>(kMaxValueBytes) * 4) {
       scene::Scene s;
       s.diagnostics.push_back({scene::Severity::kError, "scene text is too large", {0, 0, 1, 1}});
+      return s;
+    }
+    if (int at = FindDeepBracket(text); at >= 0) {
+      scene::Scene s;
+      s.diagnostics.push_back({scene::Severity::kError,
+                               "brackets nested more than " + std::to_string(kMaxBracketDepth) +
+                                   " deep are not allowed in scene scripts",
+                               LineIndex(text).Span(at, at + 1)});
       return s;
     }
     EvalContext ctx(text, limits);

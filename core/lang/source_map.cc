@@ -13,6 +13,7 @@
 #include <tcl.h>
 
 #include <algorithm>
+#include <cstring>
 #include <utility>
 
 namespace asgard::lang {
@@ -58,6 +59,30 @@ std::string_view TrimCommandText(std::string_view text) {
   size_t e = text.size();
   while (e > b && (IsBlank(text[e - 1]) || text[e - 1] == ';')) --e;
   return text.substr(b, e - b);
+}
+
+int FindDeepBracket(std::string_view text, int limit) {
+  if (text.size() < static_cast<size_t>(limit)) return -1;
+  size_t opens = 0;
+  for (const char* p = text.data();
+       (p = static_cast<const char*>(std::memchr(p, '[', text.data() + text.size() - p))) !=
+       nullptr;
+       ++p) {
+    if (++opens > static_cast<size_t>(limit)) break;
+  }
+  if (opens <= static_cast<size_t>(limit)) return -1;
+  int depth = 0;
+  for (size_t i = 0; i < text.size(); ++i) {
+    char c = text[i];
+    if (c == '\\') {
+      ++i;
+    } else if (c == '[') {
+      if (++depth > limit) return static_cast<int>(i);
+    } else if (c == ']' && depth > 0) {
+      --depth;
+    }
+  }
+  return -1;
 }
 
 LineIndex::LineIndex(std::string_view text) : size_(static_cast<int>(text.size())) {

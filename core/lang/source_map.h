@@ -97,6 +97,13 @@ class SourceMap {
   std::unordered_multimap<std::string_view, int> by_text_;
 };
 
+// Tcl's parser recurses once per nested `[`; a few tens of thousands of
+// levels overflow the C stack.  Returns the offset of the first `[` nested
+// deeper than `limit` (backslash-escaped brackets ignored, braces not
+// considered, so the count is conservative), or -1.
+constexpr int kMaxBracketDepth = 256;
+int FindDeepBracket(std::string_view text, int limit = kMaxBracketDepth);
+
 // `text` without leading/trailing blanks and trailing semicolons.
 std::string_view TrimCommandText(std::string_view text);
 

@@ -88,6 +88,11 @@ std::vector<BadInput> Catalogue() {
       {"HugeListRepeat", "set x [lrepeat 100000000 a]\n", 1, 8, "above the scene limit"},
       {"DoublingString", "set s x\nwhile 1 {append s $s}\n", 2, 0, "above the scene limit"},
       {"HugeFormatWidth", "set s [format %900000000s x]\n", 1, 0, "above the scene limit"},
+      {"DeeplyNestedBrackets", "set x " + std::string(300, '[') + std::string(300, ']') + "\n", 1,
+       263, "nested more than 256 deep"},
+      {"DeeplyNestedBracketsBuiltAtRunTime",
+       "set o [string repeat \"\\[\" 5000]\neval \"set x ${o}\"\n", 1, 0,
+       "nested more than 256 deep"},
       {"BadCollisionFlag", B("body b1 -shape box -ct maybe\n"), 2, 24, "expects 0 or 1"},
       {"LinkWithTwoTargets",
        B("body a -shape box\nbody b -shape box\n"
