@@ -6,8 +6,10 @@
 namespace asgard::physics {
 namespace {
 
+std::vector<scene::TrajectoryKnot> Knots(std::vector<scene::TrajectoryKnot> k) { return k; }
+
 TEST(TrajectoryCurve, PassesThroughItsKnotsAndIsC1) {
-  TrajectoryCurve c({{0, {0, 0, 0}}, {1, {1, 2, 0}}, {3, {2, 0, 1}}, {4, {0, 0, 0}}});
+  TrajectoryCurve c(Knots({{0, {0, 0, 0}}, {1, {1, 2, 0}}, {3, {2, 0, 1}}, {4, {0, 0, 0}}}));
   for (size_t i = 0; i < c.times.size(); ++i)
     EXPECT_LT((c.Value(c.times[i]) - c.points[i]).norm(), 1e-14);
   for (double knot : {1.0, 3.0}) {
@@ -17,7 +19,7 @@ TEST(TrajectoryCurve, PassesThroughItsKnotsAndIsC1) {
 }
 
 TEST(TrajectoryCurve, DerivativesMatchDifferenceQuotients) {
-  TrajectoryCurve c({{0, {0, 0, 0}}, {1, {1, 2, 0}}, {3, {2, 0, 1}}});
+  TrajectoryCurve c(Knots({{0, {0, 0, 0}}, {1, {1, 2, 0}}, {3, {2, 0, 1}}}));
   for (double t : {0.2, 0.7, 1.5, 2.9}) {
     const double h = 1e-6;
     for (int order = 0; order < 3; ++order) {
@@ -28,11 +30,11 @@ TEST(TrajectoryCurve, DerivativesMatchDifferenceQuotients) {
 }
 
 TEST(TrajectoryCurve, ExtrapolatesLinearlyOutsideItsKnots) {
-  TrajectoryCurve c({{1, {0, 0, 0}}, {2, {1, 0, 0}}});
+  TrajectoryCurve c(Knots({{1, {0, 0, 0}}, {2, {1, 0, 0}}}));
   EXPECT_NEAR(c.Value(3).x(), 2.0, 1e-14);
   EXPECT_NEAR(c.Value(0).x(), -1.0, 1e-14);
   EXPECT_EQ(c.Value(5, 2).norm(), 0.0);
-  TrajectoryCurve single({{1, {4, 5, 6}}});
+  TrajectoryCurve single(Knots({{1, {4, 5, 6}}}));
   EXPECT_EQ(single.Value(7).y(), 5.0);
 }
 

@@ -44,19 +44,24 @@ inline double DampedLinkExact(double k, double mass, double x0, double t) {
   return (x0 + w * x0 * t) * std::exp(-w * t);
 }
 
-// Simple pendulum: a point mass (a sphere linked at its centre) on a stiff
-// link of length L to the origin, released at angle θ0 from the vertical.
+// Pendulum: a ball (radius 0.5, mass 1, I_cm = 0.1) whose point at distance
+// L from its centre is linked to the origin — links have zero rest length, so
+// the link is a stiff ball joint (seed 5.1.2) and the ball swings as a
+// physical pendulum, released at angle θ0 from the vertical.
 inline std::string Pendulum(double length, double theta0, double g, double k, double finish) {
-  const double x = length * std::sin(theta0), y = -length * std::cos(theta0);
-  return std::string(kBallShape) +
-         Ball("m", std::to_string(x) + " " + std::to_string(y) + " 0", "0 0 0", "-mass 1") +
-         "link -body1 m -offset1 {0 0 0} -x 0 -y 0 -z 0 -tightness " + std::to_string(k) + "\n"
-         "force -body m -x 0 -y -" + std::to_string(g) + " -z 0 -gravitational 1\n"
+  const double sx = std::sin(theta0), cy = std::cos(theta0);
+  return std::string(kBallShape) + "body m -shape ball -mass 1 -init_pos {" +
+         std::to_string(length * sx) + " " + std::to_string(-length * cy) + " 0}\n" +
+         "link -body1 m -offset1 {" + std::to_string(-length * sx) + " " +
+         std::to_string(length * cy) + " 0} -x 0 -y 0 -z 0 -tightness " + std::to_string(k) +
+         "\n" + "force -body m -x 0 -y -" + std::to_string(g) + " -z 0 -gravitational 1\n" +
          "simulator -finish " + std::to_string(finish) + "\n";
 }
-// Period of the simple pendulum: 4 √(L/g) K(sin(θ0/2)).
-inline double PendulumPeriod(double length, double theta0, double g) {
-  return 4.0 * std::sqrt(length / g) * std::comp_ellint_1(std::sin(theta0 / 2));
+// Period of that physical pendulum: 4 √(L_eq/g) K(sin(θ0/2)) with the
+// equivalent length L_eq = (I_cm + m L²) / (m L).
+inline double PendulumPeriod(double length, double theta0, double g, double i_cm = 0.1) {
+  const double l_eq = (i_cm + length * length) / length;
+  return 4.0 * std::sqrt(l_eq / g) * std::comp_ellint_1(std::sin(theta0 / 2));
 }
 
 // Torque-free rigid body with principal moments I1 < I2 < I3 (given with
