@@ -339,13 +339,13 @@ class Interps {
 };
 
 void Run(EvalContext& ctx) {
+  GuardState guard{&ctx};  // outlives the interpreters that call it
   Interps interps(ctx);
   scene::SourceSpan whole = ctx.map.lines().Span(0, 0);
   if (ctx.child == nullptr) {
     ctx.AddError("cannot create the scene interpreter", whole);
     return;
   }
-  GuardState guard{&ctx};
   std::string setup_error;
   ctx.heap_baseline = HeapInUse();
   auto deadline = std::chrono::steady_clock::now() +

@@ -9,6 +9,8 @@
 #include <fstream>
 #include <sstream>
 #include <string>
+#include <thread>
+#include <vector>
 
 namespace asgard::lang {
 namespace {
@@ -495,6 +497,22 @@ TEST(LangInterp, AThousandBodiesEvaluateQuickly) {
   EXPECT_EQ(s.bodies.size(), 1000u);
   EXPECT_EQ(s.bodies[999].run_count, 1000);
   EXPECT_LT(seconds, 2.0);
+}
+
+TEST(LangInterp, EvaluationsInSeveralThreadsAtOnceAreIndependent) {
+  std::string text = ReadSample("pendulum.al");
+  std::vector<std::thread> threads;
+  std::vector<size_t> bodies(4, 0);
+  for (int i = 0; i < 4; ++i) {
+    threads.emplace_back([&, i] {
+      for (int k = 0; k < 5; ++k) {
+        Scene s = Eval(text);
+        bodies[i] += s.diagnostics.empty() ? s.bodies.size() : 0;
+      }
+    });
+  }
+  for (auto& t : threads) t.join();
+  for (size_t n : bodies) EXPECT_EQ(n, 15u);
 }
 
 TEST(LangInterp, FormatDiagnosticGivesFileLineColumnSeverityAndMessage) {
