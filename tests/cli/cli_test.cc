@@ -1,0 +1,143 @@
+// The asgard command line: help, error format, exit status, outputs.
+#include <gtest/gtest.h>
+#include <sys/wait.h>
+
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <sstream>
+#include <string>
+
+namespace {
+
+struct Result {
+  int status;
+  std::string out;  // stdout and stderr together
+};
+
+Result Asgard(const std::string& args) {
+  const std::string cmd =
+      std::string(ASGARD_BINARY_DIR) + "/core/app/asgard " + args + " 2>&1 </dev/null";
+  FILE* p = popen(cmd.c_str(), "r");
+  std::string out;
+  char buf[4096];
+  size_t n;
+  while ((n = fread(buf, 1, sizeof buf, p)) > 0) out.append(buf, n);
+  const int st = pclose(p);
+  return {WIFEXITED(st) ? WEXITSTATUS(st) : -1, out};
+}
+
+std::string Sample(const std::string& name) {
+  return std::string(ASGARD_SOURCE_DIR) + "/samples/" + name;
+}
+
+std::filesystem::path TempFile(const std::string& name, const std::string& text = "") {
+  const auto dir = std::filesystem::temp_directory_path() / ("asgard_cli_" + std::to_string(getpid()));
+  std::filesystem::create_directories(dir);
+  const auto path = dir / name;
+  if (!text.empty()) std::ofstream(path) << text;
+  return path;
+}
+
+TEST(Cli, HelpIsAvailableEverywhere) {
+  for (const char* args : {"--help", "help", "check --help", "simulate --help", "help simulate"}) {
+    const Result r = Asgard(args);
+    EXPECT_EQ(r.status, 0) << args;
+    EXPECT_NE(r.out.find("Usage"), std::string::npos) << args << ": " << r.out;
+  }
+  EXPECT_NE(Asgard("simulate --help").out.find("--until"), std::string::npos);
+}
+
+TEST(Cli, BadUsageExitsWithTwoAndSaysWhy) {
+  Result r = Asgard("");
+  EXPECT_EQ(r.status, 2);
+  r = Asgard("frobnicate");
+  EXPECT_EQ(r.status, 2);
+  EXPECT_NE(r.out.find("unknown command 'frobnicate'"), std::string::npos);
+  r = Asgard("simulate " + Sample("pendulum.al") + " --rtol abc");
+  EXPECT_EQ(r.status, 2);
+  EXPECT_NE(r.out.find("--rtol needs a number"), std::string::npos);
+  r = Asgard("simulate " + Sample("pendulum.al") + " --out result.txt");
+  EXPECT_EQ(r.status, 2);
+  r = Asgard("simulate " + Sample("pendulum.al") + " --bogus");
+  EXPECT_EQ(r.status, 2);
+  EXPECT_NE(r.out.find("unknown option '--bogus'"), std::string::npos);
+}
+
+TEST(Cli, CheckReportsErrorsAsFileLineColumn) {
+  const auto path = TempFile("bad.al",
+                             "shape_set ball -desc {-sub {-pos {0 0 0} -sphere 1}}\n"
+                             "body b -shape ball\n"
+                             "  body c -shape ball -mass -2\n");
+  const Result r = Asgard("check " + path.string());
+  EXPECT_EQ(r.status, 1);
+  EXPECT_NE(r.out.find(path.string() + ":3:"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("error:"), std::string::npos) << r.out;
+}
+
+TEST(Cli, CheckAcceptsTheSeedSamples) {
+  for (const char* s : {"pendulum.al", "figure62.al"}) {
+    const Result r = Asgard("check " + Sample(s));
+    EXPECT_EQ(r.status, 0) << r.out;
+    EXPECT_NE(r.out.find("ok"), std::string::npos);
+  }
+}
+
+TEST(Cli, AMissingFileIsAnError) {
+  const Result r = Asgard("check /nonexistent/scene.al");
+  EXPECT_EQ(r.status, 1);
+  EXPECT_NE(r.out.find("cannot read"), std::string::npos);
+}
+
+TEST(Cli, SimulateWritesCsvWithOneRowPerFrame) {
+  const auto out = TempFile("p.csv");
+  const Result r = Asgard("simulate " + Sample("pendulum.al") + " --out " + out.string());
+  ASSERT_EQ(r.status, 0) << r.out;
+  std::ifstream in(out);
+  std::string header, line;
+  std::getline(in, header);
+  EXPECT_EQ(header.rfind("t,b1.x,b1.y,b1.z,b1.qw", 0), 0u) << header;
+  int rows = 0;
+  std::string last;
+  while (std::getline(in, line)) {
+    ++rows;
+    last = line;
+  }
+  EXPECT_EQ(rows, 151);  // 5 s at 30 frames per second, both ends included
+  EXPECT_EQ(last.rfind("5,", 0), 0u) << last;
+}
+
+TEST(Cli, SimulateWritesJsonAndHonoursUntil) {
+  const auto out = TempFile("p.json");
+  const Result r =
+      Asgard("simulate " + Sample("pendulum.al") + " --until 1 --quiet --out " + out.string());
+  ASSERT_EQ(r.status, 0) << r.out;
+  std::ifstream in(out);
+  const auto j = nlohmann::json::parse(in);
+  EXPECT_EQ(j["t1"].get<double>(), 1.0);
+  EXPECT_EQ(j["times"].back().get<double>(), 1.0);
+  ASSERT_EQ(j["bodies"].size(), 3u);
+  EXPECT_EQ(j["bodies"][0]["name"], "b1");
+  EXPECT_EQ(j["bodies"][0]["x"].size(), j["times"].size());
+  EXPECT_GT(j["counters"]["steps"].get<long>(), 0);
+}
+
+TEST(Cli, StatsListTheComponentsAndCounters) {
+  const Result r = Asgard("simulate " + Sample("pendulum.al") + " --stats");
+  ASSERT_EQ(r.status, 0) << r.out;
+  EXPECT_NE(r.out.find("components: 11"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("{b3.x} reads"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("rhs evaluations"), std::string::npos);
+  EXPECT_NE(r.out.find("truncated steps"), std::string::npos);
+}
+
+TEST(Cli, AnEndlessLoopEndsWithAClearError) {
+  const auto path = TempFile("loop.al", "set x 0\nwhile 1 {incr x}\n");
+  const Result r = Asgard("simulate " + path.string());
+  EXPECT_EQ(r.status, 1);
+  EXPECT_NE(r.out.find(":2:"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("limit"), std::string::npos) << r.out;
+}
+
+}  // namespace
