@@ -13,8 +13,11 @@ packages=(
   # core
   tcl8.6-dev libeigen3-dev libsuitesparse-dev libqhull-dev libccd-dev
   nlohmann-json3-dev
+  # rendering and exports
+  libcairo2-dev libpango1.0-dev libosmesa6-dev libpng-dev ffmpeg
   # tests and benchmarks
   libgtest-dev libgmock-dev libbenchmark-dev
+  ghostscript poppler-utils povray
 )
 
 missing=()

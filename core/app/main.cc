@@ -17,6 +17,7 @@
 #include <string>
 #include <vector>
 
+#include "core/app/commands.h"
 #include "core/app/pipeline.h"
 #include "core/lang/lang.h"
 
@@ -29,6 +30,8 @@ constexpr const char* kMainHelp = R"(asgard — physically-based 3D animation: s
 Usage:
   asgard check FILE            check a scene for errors
   asgard simulate FILE [...]   simulate a scene and write its trajectories
+  asgard render FILE [...]     draw frames, pictures and movies of a scene
+  asgard export FILE [...]     write the scene for other programs (POV-Ray, glTF, ...)
   asgard help [COMMAND]        show help (also: asgard COMMAND --help)
 
 Scene scripts are Tcl with Asgard's element commands; see docs/language.md.
@@ -369,10 +372,14 @@ int main(int argc, char** argv) {
   if (cmd == "-h" || cmd == "--help" || cmd == "help") {
     if (!args.empty() && args[0] == "check") std::cout << kCheckHelp;
     else if (!args.empty() && args[0] == "simulate") std::cout << kSimulateHelp;
+    else if (!args.empty() && args[0] == "render") std::cout << asgard::app::kRenderHelp;
+    else if (!args.empty() && args[0] == "export") std::cout << asgard::app::kExportHelp;
     else std::cout << kMainHelp;
     return 0;
   }
   if (cmd == "check") return Check(args);
   if (cmd == "simulate") return Simulate(args);
+  if (cmd == "render") return asgard::app::RenderCommand(args);
+  if (cmd == "export") return asgard::app::ExportCommand(args);
   return Usage("unknown command '" + cmd + "'", kMainHelp);
 }
