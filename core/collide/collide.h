@@ -34,12 +34,26 @@ struct Piece {
   std::vector<std::vector<int>> faces;               // polytope: CCW from outside
   std::vector<Eigen::Vector3d> normals;              // polytope: outward, per face
   double bound_radius = 0.0;  // max distance of any point of the piece from the body origin
+  std::vector<std::vector<int>> neighbors;  // polytope: vertex adjacency (sorted, from faces)
 
   static Piece Sphere(const Eigen::Vector3d& center, double radius);
   // From hull vertices and CCW faces (as geometry::ConvexHull gives them).
+  // Normals are recomputed (Newell) from the faces.  Throws
+  // std::invalid_argument for an empty vertex list or an out-of-range index.
   static Piece Polytope(std::vector<Eigen::Vector3d> vertices, std::vector<std::vector<int>> faces);
-  // Support point in direction d (body coordinates).
+  // Support point in direction d (body coordinates).  For a sphere this is
+  // the point of the sphere surface (the centre when d = 0).
   Eigen::Vector3d Support(const Eigen::Vector3d& d) const;
+  // Index of a support vertex of the piece's core in direction d: a polytope
+  // vertex (ties go to the lowest index reached; hill climbing from `hint`
+  // for large polytopes), or 0 for a sphere, whose core is its centre.
+  int SupportIndex(const Eigen::Vector3d& d, int hint = 0) const;
+  // Core point of an index from SupportIndex (body coordinates).
+  const Eigen::Vector3d& CorePoint(int index) const {
+    return is_sphere ? center : vertices[static_cast<size_t>(index)];
+  }
+  // Radius added to the core (the sphere radius; 0 for polytopes).
+  double CoreRadius() const { return is_sphere ? radius : 0.0; }
 };
 
 // Rigid placement: x_world = p + R x_body.
@@ -101,7 +115,7 @@ struct Motion {
 };
 
 struct ImpactResult {
-  double time = 0.0;  // first time the pieces come within `separation`
+  double time = 0.0;       // first time the pieces come within `separation`
   DistanceResult contact;  // the query at `time`
   int iterations = 0;
 };
@@ -116,13 +130,13 @@ struct ImpactResult {
 // [t0, t1].  If the pieces already overlap at t0 it reports t0 with
 // contact.overlapping set.  Deterministic for the same inputs.
 std::optional<ImpactResult> TimeOfImpact(const Piece& a, const Motion& ma, const Piece& b,
-                                         const Motion& mb, double t0, double t1,
-                                         double separation, DistanceCache* cache = nullptr);
+                                         const Motion& mb, double t0, double t1, double separation,
+                                         DistanceCache* cache = nullptr);
 
 // Rigid body state for the impulse computation, world frame.
 struct BodyState {
-  double inv_mass = 0.0;                                       // 0: infinite mass
-  Eigen::Matrix3d inv_inertia = Eigen::Matrix3d::Zero();       // world frame; 0: infinite
+  double inv_mass = 0.0;                                  // 0: infinite mass
+  Eigen::Matrix3d inv_inertia = Eigen::Matrix3d::Zero();  // world frame; 0: infinite
   Eigen::Vector3d com = Eigen::Vector3d::Zero();
   Eigen::Vector3d v = Eigen::Vector3d::Zero();
   Eigen::Vector3d w = Eigen::Vector3d::Zero();
