@@ -1,0 +1,75 @@
+// Sweep and prune against brute force.
+#include <gtest/gtest.h>
+
+#include <random>
+
+#include "core/collide/collide.h"
+
+namespace asgard::collide {
+namespace {
+
+struct Aabb {
+  int id;
+  Eigen::Vector3d lo, hi;
+};
+
+std::vector<std::pair<int, int>> BruteForce(const std::vector<Aabb>& boxes) {
+  std::vector<std::pair<int, int>> pairs;
+  for (size_t i = 0; i < boxes.size(); ++i) {
+    for (size_t j = i + 1; j < boxes.size(); ++j) {
+      const Aabb& a = boxes[i];
+      const Aabb& b = boxes[j];
+      if ((a.lo.array() <= b.hi.array()).all() && (b.lo.array() <= a.hi.array()).all()) {
+        pairs.emplace_back(std::min(a.id, b.id), std::max(a.id, b.id));
+      }
+    }
+  }
+  std::sort(pairs.begin(), pairs.end());
+  return pairs;
+}
+
+void CompareWithBruteForce(int n, unsigned seed) {
+  std::mt19937_64 rng(seed);
+  std::uniform_real_distribution<double> position(0.0, 10.0);
+  std::uniform_real_distribution<double> size(0.0, 1.2);
+  std::vector<int> ids(static_cast<size_t>(n));
+  for (int i = 0; i < n; ++i) ids[static_cast<size_t>(i)] = 3 * (n - i) + 7;  // unordered ids
+  std::shuffle(ids.begin(), ids.end(), rng);
+  std::vector<Aabb> boxes;
+  BroadPhase bp;
+  for (int i = 0; i < n; ++i) {
+    const Eigen::Vector3d lo(position(rng), position(rng), position(rng));
+    const Eigen::Vector3d hi = lo + Eigen::Vector3d(size(rng), size(rng), size(rng));
+    boxes.push_back({ids[static_cast<size_t>(i)], lo, hi});
+    bp.Add(ids[static_cast<size_t>(i)], lo, hi);
+  }
+  const auto expected = BruteForce(boxes);
+  EXPECT_EQ(bp.Pairs(), expected);
+  EXPECT_FALSE(expected.empty());
+}
+
+TEST(BroadPhase, PairsEqualBruteForceOn200RandomBoxes) { CompareWithBruteForce(200, 1); }
+
+TEST(BroadPhase, PairsEqualBruteForceOn1000RandomBoxes) { CompareWithBruteForce(1000, 2); }
+
+TEST(BroadPhase, EmptyAndSingleBoxGiveNoPairs) {
+  BroadPhase bp;
+  EXPECT_TRUE(bp.Pairs().empty());
+  bp.Add(4, {0, 0, 0}, {1, 1, 1});
+  EXPECT_TRUE(bp.Pairs().empty());
+}
+
+TEST(BroadPhase, TouchingBoxesPairOnceAsSmallerIdFirstAndClearEmpties) {
+  BroadPhase bp;
+  bp.Add(9, {0, 0, 0}, {1, 1, 1});
+  bp.Add(2, {1, 0.5, 0.5}, {2, 2, 2});    // touches at x = 1
+  bp.Add(5, {0, 0, 1.5}, {0.5, 0.5, 2});  // overlaps neither
+  const auto pairs = bp.Pairs();
+  ASSERT_EQ(pairs.size(), 1u);
+  EXPECT_EQ(pairs[0], std::make_pair(2, 9));
+  bp.Clear();
+  EXPECT_TRUE(bp.Pairs().empty());
+}
+
+}  // namespace
+}  // namespace asgard::collide

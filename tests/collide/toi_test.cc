@@ -1,0 +1,167 @@
+// Time of impact by conservative advancement.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <numbers>
+
+#include "tests/collide/shapes.h"
+
+namespace asgard::collide {
+namespace {
+
+using testing::Box;
+using testing::MakePose;
+
+const Eigen::Matrix3d kI = Eigen::Matrix3d::Identity();
+
+Motion Linear(const Eigen::Vector3d& p0, const Eigen::Vector3d& v) {
+  Motion m;
+  m.pose = [p0, v](double t) { return MakePose(p0 + t * v, Eigen::Matrix3d::Identity()); };
+  m.max_linear_speed = v.norm();
+  return m;
+}
+
+Motion Static(const Eigen::Vector3d& p) { return Linear(p, Eigen::Vector3d::Zero()); }
+
+// Translating at v while spinning about z at omega.
+Motion Spinning(const Eigen::Vector3d& p0, const Eigen::Vector3d& v, double omega) {
+  Motion m;
+  m.pose = [p0, v, omega](double t) {
+    return MakePose(p0 + t * v,
+                    Eigen::AngleAxisd(omega * t, Eigen::Vector3d::UnitZ()).toRotationMatrix());
+  };
+  m.max_linear_speed = v.norm();
+  m.max_angular_speed = std::abs(omega);
+  return m;
+}
+
+// First time the pieces touch: fine sampling, then bisection on overlap.
+double ReferenceContact(const Piece& a, const Motion& ma, const Piece& b, const Motion& mb,
+                        double t0, double t1, double h) {
+  auto touching = [&](double t) {
+    const DistanceResult r = Distance(a, ma.pose(t), b, mb.pose(t));
+    return r.overlapping;
+  };
+  double previous = t0;
+  for (double t = t0 + h; t <= t1; t += h) {
+    if (touching(t)) {
+      double lo = previous, hi = t;
+      for (int k = 0; k < 200 && hi - lo > 1e-15; ++k) {
+        const double mid = 0.5 * (lo + hi);
+        (touching(mid) ? hi : lo) = mid;
+      }
+      return hi;
+    }
+    previous = t;
+  }
+  return std::nan("");
+}
+
+void ExpectLanding(const ImpactResult& impact, double separation) {
+  EXPECT_FALSE(impact.contact.overlapping);
+  EXPECT_GT(impact.contact.distance, 0.0);
+  EXPECT_LE(impact.contact.distance, separation);
+}
+
+TEST(TimeOfImpact, ApproachingSpheresMeetAtTwoSeconds) {
+  const Piece ball = Piece::Sphere({0, 0, 0}, 1.0);
+  const double separation = 1e-6;
+  const auto impact = TimeOfImpact(ball, Linear({0, 0, 0}, {1, 0, 0}), ball,
+                                   Linear({6, 0, 0}, {-1, 0, 0}), 0.0, 10.0, separation);
+  ASSERT_TRUE(impact.has_value());
+  ExpectLanding(*impact, separation);
+  EXPECT_LE(impact->time, 2.0);
+  EXPECT_GE(impact->time, 2.0 - separation / 2.0 - 1e-12);
+  EXPECT_LT(impact->iterations, 60);
+}
+
+TEST(TimeOfImpact, SpinningBoxReachesAWallWhenAFineReferenceSearchSaysSo) {
+  const Piece box = Box({0.5, 0.5, 0.5});
+  const Piece wall = Box({0.05, 2, 2});
+  const Motion mbox = Spinning({0, 0, 0}, {1, 0, 0}, 5.0);
+  const Motion mwall = Static({3, 0, 0});
+  const double separation = 1e-9;
+  const auto impact = TimeOfImpact(box, mbox, wall, mwall, 0.0, 5.0, separation);
+  ASSERT_TRUE(impact.has_value());
+  ExpectLanding(*impact, separation);
+  const double reference = ReferenceContact(box, mbox, wall, mwall, 0.0, 5.0, 1e-4);
+  ASSERT_TRUE(std::isfinite(reference));
+  EXPECT_NEAR(impact->time, reference, 1e-6);
+  EXPECT_LE(impact->time, reference);
+}
+
+TEST(TimeOfImpact, FastSpinLeavesAdvancementToTheFallbackAndStillLandsBeforeContact) {
+  const Piece box = Box({0.5, 0.3, 0.5});
+  const Piece wall = Box({0.05, 2, 2});
+  const Motion mbox = Spinning({0, 0, 0}, {1, 0, 0}, 80.0);
+  const Motion mwall = Static({2, 0, 0});
+  const double separation = 1e-9;
+  const auto impact = TimeOfImpact(box, mbox, wall, mwall, 0.0, 3.0, separation);
+  ASSERT_TRUE(impact.has_value());
+  ExpectLanding(*impact, separation);
+  EXPECT_GT(impact->iterations, 200);
+  const double reference = ReferenceContact(box, mbox, wall, mwall, 0.0, 3.0, 1e-5);
+  ASSERT_TRUE(std::isfinite(reference));
+  EXPECT_NEAR(impact->time, reference, 1e-6);
+  EXPECT_LE(impact->time, reference);
+}
+
+TEST(TimeOfImpact, FastSphereDoesNotTunnelThroughAThinPlate) {
+  const Piece plate = Box({2, 2, 0.005});
+  const Piece ball = Piece::Sphere({0, 0, 0}, 0.1);
+  const double separation = 1e-6;
+  const auto impact = TimeOfImpact(plate, Static({0, 0, 0}), ball,
+                                   Linear({0.3, -0.2, 5}, {0, 0, -1000}), 0.0, 1.0, separation);
+  ASSERT_TRUE(impact.has_value());
+  ExpectLanding(*impact, separation);
+  const double expected = (5.0 - 0.105) / 1000.0;
+  EXPECT_LE(impact->time, expected);
+  EXPECT_GE(impact->time, expected - separation / 1000.0);
+  EXPECT_NEAR(impact->contact.normal.z(), 1.0, 1e-12);
+}
+
+TEST(TimeOfImpact, NoContactInTheIntervalGivesNothing) {
+  const Piece ball = Piece::Sphere({0, 0, 0}, 1.0);
+  const Piece box = Box({0.5, 0.5, 0.5});
+  // Moving apart.
+  EXPECT_FALSE(TimeOfImpact(ball, Linear({0, 0, 0}, {-1, 0, 0}), ball, Linear({3, 0, 0}, {1, 0, 0}),
+                            0.0, 10.0, 1e-6)
+                   .has_value());
+  // Passing by at a distance of 0.5.
+  EXPECT_FALSE(
+      TimeOfImpact(box, Static({0, 0, 0}), ball, Linear({-5, 2, 0}, {1, 0, 0}), 0.0, 10.0, 1e-6)
+          .has_value());
+  // Approaching, but the interval ends first (contact at t = 2).
+  EXPECT_FALSE(
+      TimeOfImpact(ball, Static({0, 0, 0}), ball, Linear({4, 0, 0}, {-1, 0, 0}), 0.0, 1.9, 1e-6)
+          .has_value());
+  // Nothing moves.
+  EXPECT_FALSE(
+      TimeOfImpact(ball, Static({0, 0, 0}), ball, Static({4, 0, 0}), 0.0, 1.0, 1e-6).has_value());
+}
+
+TEST(TimeOfImpact, StartingOverlappedReportsTheStartTime) {
+  const Piece box = Box({0.5, 0.5, 0.5});
+  const auto impact =
+      TimeOfImpact(box, Static({0, 0, 0}), box, Linear({0.5, 0, 0}, {1, 0, 0}), 0.25, 1.0, 1e-6);
+  ASSERT_TRUE(impact.has_value());
+  EXPECT_EQ(impact->time, 0.25);
+  EXPECT_TRUE(impact->contact.overlapping);
+}
+
+TEST(TimeOfImpact, SharedCacheKeepsQueriesCheapAndResultsDeterministic) {
+  const Piece box = Box({0.5, 0.5, 0.5});
+  const Piece wall = Box({0.05, 2, 2});
+  const Motion mbox = Spinning({0, 0, 0}, {1, 0, 0}, 5.0);
+  DistanceCache cache;
+  const auto first = TimeOfImpact(box, mbox, wall, Static({3, 0, 0}), 0.0, 5.0, 1e-9, &cache);
+  const auto second = TimeOfImpact(box, mbox, wall, Static({3, 0, 0}), 0.0, 5.0, 1e-9);
+  ASSERT_TRUE(first && second);
+  EXPECT_NEAR(first->time, second->time, 1e-12);
+  const auto again = TimeOfImpact(box, mbox, wall, Static({3, 0, 0}), 0.0, 5.0, 1e-9);
+  EXPECT_EQ(again->time, second->time);
+  EXPECT_EQ(again->iterations, second->iterations);
+}
+
+}  // namespace
+}  // namespace asgard::collide
