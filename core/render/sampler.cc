@@ -1,0 +1,386 @@
+// Scene sampling: geometry, poses, framing, lights and overlays.
+//
+// Design: geometry comes from the equation system's BodyModels (already in
+// body coordinates, hulls computed once by physics), so a renderer only ever
+// applies a rigid transform per body.  Poses come from app::SampleBody.
+// Overlay values that depend on expressions (link end points given as
+// expressions, force vectors) are evaluated with the expression module: the
+// texts are parsed once against a small name table (body state, mass and
+// inertia, trajectories) and compiled to one tape; anything the table cannot
+// resolve is simply not drawn.
+#include "core/render/sampler.h"
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+
+#include "core/expr/expr.h"
+#include "core/physics/trajectory.h"
+
+namespace asgard::render {
+
+namespace {
+
+// Value slots per body in the overlay evaluator.
+enum Slot {
+  kPx,
+  kPy,
+  kPz,
+  kVx,
+  kVy,
+  kVz,
+  kQw,
+  kQx,
+  kQy,
+  kQz,
+  kWx,
+  kWy,
+  kWz,
+  kW1,
+  kW2,
+  kW3,
+  kSlots
+};
+
+const std::map<std::string, int, std::less<>>& SlotNames() {
+  static const std::map<std::string, int, std::less<>> names = {
+      {"x", kPx},  {"y", kPy},  {"z", kPz},  {"dx", kVx}, {"dy", kVy}, {"dz", kVz}, {"vx", kVx},
+      {"vy", kVy}, {"vz", kVz}, {"qw", kQw}, {"qx", kQx}, {"qy", kQy}, {"qz", kQz}, {"wx", kWx},
+      {"wy", kWy}, {"wz", kWz}, {"w1", kW1}, {"w2", kW2}, {"w3", kW3}};
+  return names;
+}
+
+Pose ToPose(const app::BodyFrame& f) {
+  Pose p;
+  p.p = Eigen::Vector3d(f.p[0], f.p[1], f.p[2]);
+  p.q = Eigen::Quaterniond(f.q[0], f.q[1], f.q[2], f.q[3]).normalized();
+  return p;
+}
+
+Eigen::Vector3d ToVec(const scene::Vec3& v) { return {v[0], v[1], v[2]}; }
+
+}  // namespace
+
+Eigen::Matrix4d Pose::Matrix() const {
+  Eigen::Matrix4d m = Eigen::Matrix4d::Identity();
+  m.block<3, 3>(0, 0) = q.toRotationMatrix();
+  m.block<3, 1>(0, 3) = p;
+  return m;
+}
+
+// Overlay expressions: link points and force components, compiled together.
+struct SceneSampler::Evaluator {
+  expr::Pool pool;
+  std::vector<physics::TrajectoryCurve> curves;
+  std::map<std::string, int, std::less<>> curve_index;
+  std::vector<expr::NodeId> outputs;
+  std::vector<int> link_first;   // per link: first output index, or -1
+  std::vector<int> force_first;  // per force: first output index, or -1
+  std::optional<expr::Tape> tape;
+  expr::ExternFn externs;
+
+  std::optional<expr::NodeId> Resolve(std::string_view name, const physics::EquationSystem& eq) {
+    const size_t dot = name.rfind('.');
+    if (dot == std::string_view::npos) return std::nullopt;
+    const std::string owner(name.substr(0, dot));
+    const std::string_view field = name.substr(dot + 1);
+    if (const int b = eq.FindBody(owner); b >= 0) {
+      const auto& m = eq.bodies[b];
+      if (field == "mass") return pool.Const(m.mass);
+      static const char* kInertia[] = {"Ixx", "Ixy", "Ixz", "Iyx", "Iyy",
+                                       "Iyz", "Izx", "Izy", "Izz"};
+      for (int k = 0; k < 9; ++k)
+        if (field == kInertia[k]) return pool.Const(m.inertia(k / 3, k % 3));
+      const auto it = SlotNames().find(field);
+      if (it == SlotNames().end()) return std::nullopt;
+      return pool.Var(b * kSlots + it->second);
+    }
+    const auto c = curve_index.find(owner);
+    if (c == curve_index.end()) return std::nullopt;
+    int order = 0;
+    std::string_view axis = field;
+    while (!axis.empty() && axis[0] == 'd') ++order, axis.remove_prefix(1);
+    if (axis.size() != 1 || axis[0] < 'x' || axis[0] > 'z' || order > 2) return std::nullopt;
+    return pool.Extern(3 * c->second + (axis[0] - 'x'), order);
+  }
+
+  // Parses three texts; on success appends them to `outputs` and returns the
+  // index of the first.
+  int AddTriple(const std::array<std::string, 3>& texts, const physics::EquationSystem& eq,
+                double factor) {
+    std::array<expr::NodeId, 3> ids{};
+    try {
+      for (int a = 0; a < 3; ++a) {
+        ids[a] = expr::Parse(texts[a], pool,
+                             [&](std::string_view n, expr::Pool&) { return Resolve(n, eq); });
+        if (factor != 1.0) ids[a] = pool.Mul(pool.Const(factor), ids[a]);
+      }
+    } catch (...) {
+      return -1;
+    }
+    const int first = static_cast<int>(outputs.size());
+    outputs.insert(outputs.end(), ids.begin(), ids.end());
+    return first;
+  }
+};
+
+SceneSampler::SceneSampler(const app::Run& run) : run_(run), eval_(std::make_unique<Evaluator>()) {
+  if (run.scene.simulator) frame_rate_ = run.scene.simulator->frame_rate;
+  const auto& eq = *run.equations;
+  for (size_t b = 0; b < eq.bodies.size(); ++b) {
+    const auto& m = eq.bodies[b];
+    BodyShape shape;
+    shape.name = m.name;
+    shape.is_static = m.is_static || m.first_var < 0;
+    shape.centroid = m.centroid;
+    std::optional<Rgb> body_color;
+    if (!m.color.empty()) {
+      body_color = ParseColor(m.color);
+      if (!body_color) unknown_colors_.push_back(m.color);
+    }
+    Eigen::Vector3d lo = Eigen::Vector3d::Constant(1e300), hi = -lo;
+    for (const auto& bp : m.pieces) {
+      Piece p;
+      p.sphere = bp.is_sphere;
+      p.center = bp.center;
+      p.radius = bp.radius;
+      if (!p.sphere) {
+        p.vertices = bp.hull.vertices;
+        p.triangles = bp.hull.triangles;
+        for (const auto& f : bp.hull.faces) {
+          p.faces.push_back(f.vertices);
+          p.normals.push_back(f.normal);
+        }
+        for (const auto& v : p.vertices) lo = lo.cwiseMin(v), hi = hi.cwiseMax(v);
+      } else {
+        lo = lo.cwiseMin((p.center.array() - p.radius).matrix());
+        hi = hi.cwiseMax((p.center.array() + p.radius).matrix());
+      }
+      std::optional<Rgb> c = body_color;
+      if (!c && !bp.color.empty()) {
+        c = ParseColor(bp.color);
+        if (!c) unknown_colors_.push_back(bp.color);
+      }
+      p.color = c.value_or(PaletteColor(static_cast<int>(b)));
+      shape.pieces.push_back(std::move(p));
+    }
+    if (!shape.pieces.empty()) {
+      shape.bound_center = (lo + hi) / 2;
+      for (const auto& p : shape.pieces) {
+        if (p.sphere)
+          shape.bound_radius =
+              std::max(shape.bound_radius, (p.center - shape.bound_center).norm() + p.radius);
+        for (const auto& v : p.vertices)
+          shape.bound_radius = std::max(shape.bound_radius, (v - shape.bound_center).norm());
+      }
+    }
+    bodies_.push_back(std::move(shape));
+  }
+  // Overlay expressions.
+  Evaluator& ev = *eval_;
+  for (const auto& tr : run.scene.trajectories) {
+    if (tr.knots.empty()) continue;
+    ev.curve_index[tr.name] = static_cast<int>(ev.curves.size());
+    ev.curves.emplace_back(tr.knots);
+  }
+  for (const auto& link : run.scene.links)
+    ev.link_first.push_back(
+        link.body2.empty() && link.trajectory.empty() ? ev.AddTriple(link.point, eq, 1.0) : -1);
+  for (const auto& f : run.scene.forces) {
+    const int b = eq.FindBody(f.body);
+    const double factor = f.gravitational && b >= 0 ? eq.bodies[b].mass : 1.0;
+    ev.force_first.push_back(b >= 0 ? ev.AddTriple(f.components, eq, factor) : -1);
+  }
+  if (!ev.outputs.empty()) ev.tape = expr::Tape::Compile(ev.pool, ev.outputs);
+  ev.externs = [curves = &ev.curves](int fn, int order, double t) {
+    return (*curves)[fn / 3].Evaluate(fn % 3, order, t);
+  };
+}
+
+SceneSampler::~SceneSampler() = default;
+
+double SceneSampler::t0() const { return run_.equations->t0; }
+double SceneSampler::t1() const { return run_.equations->t1; }
+
+std::vector<Pose> SceneSampler::Poses(double t) const {
+  std::vector<Pose> poses;
+  poses.reserve(bodies_.size());
+  for (size_t b = 0; b < bodies_.size(); ++b)
+    poses.push_back(
+        ToPose(app::SampleBody(*run_.equations, *run_.simulation, static_cast<int>(b), t)));
+  return poses;
+}
+
+std::vector<double> SceneSampler::FrameTimes() const {
+  const double span = t1() - t0();
+  const long count = std::max(1L, std::lround(std::floor(span * frame_rate_ + 1e-9))) + 1;
+  std::vector<double> times;
+  for (long k = 0; k < count; ++k)
+    times.push_back(k + 1 == count ? t1()
+                                   : std::min(t1(), t0() + static_cast<double>(k) / frame_rate_));
+  return times;
+}
+
+std::vector<double> SceneSampler::FrameTimes(double start, double end, int count) {
+  std::vector<double> times;
+  for (int k = 0; k < count; ++k)
+    times.push_back(count == 1 ? start : start + (end - start) * k / (count - 1));
+  return times;
+}
+
+Bound SceneSampler::SceneBound() const {
+  if (bound_) return *bound_;
+  struct Ball {
+    Eigen::Vector3d c;
+    double r;
+  };
+  std::vector<Ball> balls;
+  for (double t : FrameTimes()) {
+    const auto poses = Poses(t);
+    for (size_t b = 0; b < bodies_.size(); ++b)
+      if (!bodies_[b].pieces.empty())
+        balls.push_back({poses[b].Apply(bodies_[b].bound_center), bodies_[b].bound_radius});
+  }
+  Bound bound;
+  if (!balls.empty()) {
+    Eigen::Vector3d lo = Eigen::Vector3d::Constant(1e300), hi = -lo;
+    for (const auto& s : balls) {
+      lo = lo.cwiseMin((s.c.array() - s.r).matrix());
+      hi = hi.cwiseMax((s.c.array() + s.r).matrix());
+    }
+    bound.center = (lo + hi) / 2;
+    bound.radius = 0;
+    for (const auto& s : balls)
+      bound.radius = std::max(bound.radius, (s.c - bound.center).norm() + s.r);
+    if (!(bound.radius > 0) || !std::isfinite(bound.radius)) bound.radius = 1;
+  }
+  bound_ = bound;
+  return bound;
+}
+
+std::optional<ViewState> SceneSampler::SceneView(const std::string& name) const {
+  ViewState v;
+  const Bound b = SceneBound();
+  v.rotation = DefaultTilt();
+  v.center = b.center;
+  v.radius = b.radius;
+  const scene::View* chosen = nullptr;
+  for (const auto& e : run_.scene.views)
+    if (name.empty() || e.name == name) chosen = &e;
+  if (!name.empty() && !chosen) return std::nullopt;
+  if (chosen) {
+    if (chosen->option("rot")) {
+      const auto& q = chosen->rotation;
+      v.rotation = Eigen::Quaterniond(q[0], q[1], q[2], q[3]).normalized();
+    }
+    if (chosen->option("pos")) v.position = ToVec(chosen->position);
+    if (chosen->option("scale")) v.scale = chosen->scale;
+    if (chosen->center) v.center = ToVec(*chosen->center);
+  }
+  return v;
+}
+
+std::vector<Light> SceneSampler::SceneLights() const {
+  std::vector<Light> lights;
+  for (const auto& s : run_.scene.lights) {
+    Light l;
+    l.directional = s.type == scene::LightSource::Type::kDirectional;
+    l.position = ToVec(s.position);
+    const Eigen::Vector3d d = ToVec(s.direction);
+    l.direction = d.norm() > 0 ? d.normalized() : Eigen::Vector3d(0, 0, -1);
+    l.color = ParseColor(s.color).value_or(Rgb{1, 1, 1});
+    l.intensity = s.intensity;
+    lights.push_back(l);
+  }
+  return lights;
+}
+
+namespace {
+
+// Fills the evaluator's value array from the poses (and velocities) at t.
+std::vector<double> StateValues(const app::Run& run, double t, size_t nbodies) {
+  std::vector<double> x(nbodies * kSlots, 0.0);
+  for (size_t b = 0; b < nbodies; ++b) {
+    const auto f = app::SampleBody(*run.equations, *run.simulation, static_cast<int>(b), t);
+    double* s = &x[b * kSlots];
+    for (int a = 0; a < 3; ++a) s[kPx + a] = f.p[a], s[kVx + a] = f.v[a], s[kWx + a] = f.w[a];
+    for (int a = 0; a < 4; ++a) s[kQw + a] = f.q[a];
+    const Eigen::Quaterniond q(f.q[0], f.q[1], f.q[2], f.q[3]);
+    const Eigen::Vector3d wb = q.conjugate() * Eigen::Vector3d(f.w[0], f.w[1], f.w[2]);
+    for (int a = 0; a < 3; ++a) s[kW1 + a] = wb[a];
+  }
+  return x;
+}
+
+}  // namespace
+
+std::vector<Segment> SceneSampler::LinkSegments(double t, const std::vector<Pose>& poses) const {
+  const auto& eq = *run_.equations;
+  std::vector<double> out;
+  if (eval_->tape) {
+    const auto x = StateValues(run_, t, bodies_.size());
+    out.resize(eval_->outputs.size());
+    eval_->tape->Evaluate(t, x.data(), out.data(), &eval_->externs);
+  }
+  std::vector<Segment> segs;
+  for (size_t i = 0; i < run_.scene.links.size(); ++i) {
+    const auto& link = run_.scene.links[i];
+    const int b1 = eq.FindBody(link.body1);
+    if (b1 < 0) continue;
+    Segment s;
+    s.a = poses[b1].Apply(ToVec(link.offset1) - bodies_[b1].centroid);
+    if (!link.body2.empty()) {
+      const int b2 = eq.FindBody(link.body2);
+      if (b2 < 0) continue;
+      s.b = poses[b2].Apply(ToVec(link.offset2) - bodies_[b2].centroid);
+    } else if (!link.trajectory.empty()) {
+      const auto it = eval_->curve_index.find(link.trajectory);
+      if (it == eval_->curve_index.end()) continue;
+      s.b = eval_->curves[it->second].Value(t);
+    } else {
+      const int first = eval_->link_first[i];
+      if (first < 0) continue;
+      s.b = Eigen::Vector3d(out[first], out[first + 1], out[first + 2]);
+    }
+    segs.push_back(s);
+  }
+  return segs;
+}
+
+std::vector<Segment> SceneSampler::ForceVectors(double t, const std::vector<Pose>& poses) const {
+  const auto& eq = *run_.equations;
+  std::vector<Segment> segs;
+  if (!eval_->tape) return segs;
+  const auto x = StateValues(run_, t, bodies_.size());
+  std::vector<double> out(eval_->outputs.size());
+  eval_->tape->Evaluate(t, x.data(), out.data(), &eval_->externs);
+  for (size_t i = 0; i < run_.scene.forces.size(); ++i) {
+    const auto& f = run_.scene.forces[i];
+    const int b = eq.FindBody(f.body);
+    const int first = eval_->force_first[i];
+    if (b < 0 || first < 0) continue;
+    const Eigen::Vector3d base =
+        f.offset ? poses[b].Apply(ToVec(*f.offset) - bodies_[b].centroid) : poses[b].p;
+    const Eigen::Vector3d v(out[first], out[first + 1], out[first + 2]);
+    if (!v.allFinite()) continue;
+    segs.push_back({base, base + v});
+  }
+  return segs;
+}
+
+std::vector<std::vector<Eigen::Vector3d>> SceneSampler::Paths(
+    const std::vector<double>& times) const {
+  std::vector<std::vector<Eigen::Vector3d>> paths;
+  for (size_t b = 0; b < bodies_.size(); ++b) {
+    if (bodies_[b].is_static) continue;
+    std::vector<Eigen::Vector3d> path;
+    for (double t : times) {
+      const auto f = app::SampleBody(*run_.equations, *run_.simulation, static_cast<int>(b), t);
+      path.emplace_back(f.p[0], f.p[1], f.p[2]);
+    }
+    paths.push_back(std::move(path));
+  }
+  return paths;
+}
+
+}  // namespace asgard::render

@@ -1,0 +1,115 @@
+// Scene sampling for rendering and export (seed 4.1.9).
+//
+// A SceneSampler wraps a finished simulation run and answers what every
+// output needs: each body's geometry in body coordinates (origin at the centre
+// of mass, shape axes), its pose at any time t (app::SampleBody: the Hermite
+// interpolant of the integrator's own samples, so playback matches what was
+// integrated), the frame times, the default view that frames the whole
+// animation, the lights, and overlay geometry (link springs, force vectors,
+// body paths).
+#pragma once
+
+#include <Eigen/Dense>
+#include <Eigen/Geometry>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "core/app/pipeline.h"
+#include "core/render/color.h"
+#include "core/render/view.h"
+
+namespace asgard::render {
+
+// One convex piece in body coordinates.
+struct Piece {
+  bool sphere = false;
+  Eigen::Vector3d center = Eigen::Vector3d::Zero();  // sphere
+  double radius = 0.0;                               // sphere
+  std::vector<Eigen::Vector3d> vertices;             // hull
+  std::vector<std::vector<int>> faces;               // hull polygons, CCW from outside
+  std::vector<Eigen::Vector3d> normals;              // per face, outward
+  std::vector<std::array<int, 3>> triangles;         // hull triangulation
+  Rgb color;
+};
+
+struct BodyShape {
+  std::string name;
+  bool is_static = false;
+  std::vector<Piece> pieces;
+  Eigen::Vector3d centroid = Eigen::Vector3d::Zero();      // centre of mass, shape coordinates
+  Eigen::Vector3d bound_center = Eigen::Vector3d::Zero();  // body coordinates
+  double bound_radius = 0.0;
+};
+
+// Where a body is: world = p + q · body.
+struct Pose {
+  Eigen::Vector3d p = Eigen::Vector3d::Zero();
+  Eigen::Quaterniond q = Eigen::Quaterniond::Identity();
+
+  Eigen::Vector3d Apply(const Eigen::Vector3d& body) const { return p + q * body; }
+  Eigen::Matrix4d Matrix() const;
+};
+
+struct Segment {
+  Eigen::Vector3d a, b;
+};
+
+struct Bound {
+  Eigen::Vector3d center = Eigen::Vector3d::Zero();
+  double radius = 1.0;
+};
+
+class SceneSampler {
+ public:
+  // `run` must be ok (simulated) and outlive the sampler.
+  explicit SceneSampler(const app::Run& run);
+  ~SceneSampler();
+  SceneSampler(const SceneSampler&) = delete;
+  SceneSampler& operator=(const SceneSampler&) = delete;
+
+  double t0() const;
+  double t1() const;
+  double frame_rate() const { return frame_rate_; }
+  const std::vector<BodyShape>& bodies() const { return bodies_; }
+  // Colour names that were not understood (the palette was used instead).
+  const std::vector<std::string>& unknown_colors() const { return unknown_colors_; }
+
+  std::vector<Pose> Poses(double t) const;
+  // The scene's frame times (simulator -frames per second, t0..t1 inclusive,
+  // the last frame at t1), as app::SampleFrames.
+  std::vector<double> FrameTimes() const;
+  // `count` frames evenly spaced over [start, end] (count 1: start).
+  static std::vector<double> FrameTimes(double start, double end, int count);
+
+  // Smallest-box-centred sphere holding every body's bounding sphere at every
+  // frame time.
+  Bound SceneBound() const;
+  // The framing view (DefaultTilt, centre and radius of SceneBound), with the
+  // options of the scene's last `view` element (or the one named `name`)
+  // overriding it.  Returns nullopt when `name` is given and not found.
+  std::optional<ViewState> SceneView(const std::string& name = "") const;
+  // The scene's light sources (empty: the caller adds DefaultLight).
+  std::vector<Light> SceneLights() const;
+
+  // Overlays at time t for the given poses.
+  std::vector<Segment> LinkSegments(double t, const std::vector<Pose>& poses) const;
+  // Force vectors: base at the point of application, `b − a` the force in
+  // scene units (the caller scales it).  Forces whose expressions cannot be
+  // evaluated here are left out.
+  std::vector<Segment> ForceVectors(double t, const std::vector<Pose>& poses) const;
+  // Path of each moving body's centre of mass over `times`.
+  std::vector<std::vector<Eigen::Vector3d>> Paths(const std::vector<double>& times) const;
+
+ private:
+  struct Evaluator;
+  const app::Run& run_;
+  double frame_rate_ = 30.0;
+  std::vector<BodyShape> bodies_;
+  std::vector<std::string> unknown_colors_;
+  std::unique_ptr<Evaluator> eval_;
+  mutable std::optional<Bound> bound_;
+};
+
+}  // namespace asgard::render
