@@ -123,7 +123,9 @@ struct ImpactResult {
 // First time in [t0, t1] at which the distance between the pieces falls to
 // `separation` (> 0, small), by conservative advancement: from t, the
 // distance d can shrink at most as fast as
-//   |v_a| + |v_b| + |ω_a| r_a + |ω_b| r_b   (r = the piece's bound_radius),
+//   |v_a| + |v_b| + |ω_a| r_a + |ω_b| r_b   (r = the piece's bound_radius;
+//                                            for a sphere |center|, since
+//                                            only its centre's motion matters),
 // so t advances by (d − separation/2) / that bound, never passing the
 // contact.  Lands at a distance in (0, separation]; falls back to bisection on
 // distance when advancement stalls.  Returns nullopt when no contact occurs in

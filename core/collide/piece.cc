@@ -94,7 +94,7 @@ Piece Piece::Polytope(std::vector<Eigen::Vector3d> vertices, std::vector<std::ve
 int Piece::SupportIndex(const Eigen::Vector3d& d, int hint) const {
   if (is_sphere) return 0;
   const size_t n = vertices.size();
-  if (n <= kBruteForceVertices) {
+  if (n <= kBruteForceVertices || faces.empty()) {
     int best = 0;
     double best_dot = vertices[0].dot(d);
     for (size_t i = 1; i < n; ++i) {

@@ -6,7 +6,11 @@
 // Over an interval where the linear speeds are at most v_a, v_b and the
 // angular speeds at most ω_a, ω_b, every point of a piece moves no faster than
 // v + ω r (r = the piece's bound radius about its body origin), so the
-// distance shrinks no faster than B = v_a + v_b + ω_a r_a + ω_b r_b.  From a
+// distance shrinks no faster than B = v_a + v_b + ω_a r_a + ω_b r_b.  For a
+// sphere r is the distance of its centre from the body origin: the distance
+// to a sphere is the distance to its centre minus the radius, so the radius
+// itself never enters the bound (a ball spinning about its centre does not
+// slow the search down).  From a
 // time t with distance d > s (s = separation) the step (d − s/2)/B therefore
 // cannot bring the distance below s/2: the search never passes a contact
 // when the bounds are honest.  Each step calls Distance with the shared cache,
@@ -50,6 +54,13 @@ constexpr int kMaxBisections = 200;
 constexpr double kStallRelative = 1e-15;
 constexpr double kBisectRelative = 1e-12;
 
+// Radius about the body origin whose motion bounds the change of distance: a
+// sphere's distance to anything depends only on its centre, so spinning
+// about its own centre does not count.
+double ReachRadius(const Piece& piece) {
+  return piece.is_sphere ? piece.center.norm() : piece.bound_radius;
+}
+
 }  // namespace
 
 std::optional<ImpactResult> TimeOfImpact(const Piece& a, const Motion& ma, const Piece& b,
@@ -72,8 +83,8 @@ std::optional<ImpactResult> TimeOfImpact(const Piece& a, const Motion& ma, const
   if (r.overlapping || r.distance <= separation) return land(t0, r);
   if (!(t1 > t0)) return std::nullopt;
   const double bound = std::abs(ma.max_linear_speed) + std::abs(mb.max_linear_speed) +
-                       std::abs(ma.max_angular_speed) * a.bound_radius +
-                       std::abs(mb.max_angular_speed) * b.bound_radius;
+                       std::abs(ma.max_angular_speed) * ReachRadius(a) +
+                       std::abs(mb.max_angular_speed) * ReachRadius(b);
   if (!(bound > 0.0)) return std::nullopt;  // nothing moves: the distance stays > separation
   const double span = t1 - t0;
   auto resolution = [&](double t) { return kStallRelative * std::max(std::abs(t), span); };

@@ -2,6 +2,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdio>
 #include <numbers>
 #include <random>
 
@@ -197,6 +198,25 @@ TEST(Distance, CoincidentAndTouchingBoxesGiveFiniteResults) {
   EXPECT_TRUE(r.normal.allFinite());
 }
 
+TEST(Distance, DegenerateSegmentAndPointPolytopesGiveFiniteExactDistances) {
+  const Piece box = Box({0.5, 0.5, 0.5});
+  const Piece segment = Piece::Polytope({{-3, 0, 0}, {3, 0, 0}}, {});
+  const Piece point = Piece::Polytope({{0, 0, 0}}, {});
+  DistanceResult r = Distance(box, MakePose({0, 0, 0}, kI), segment, MakePose({0, 0, 2}, kI));
+  EXPECT_NEAR(r.distance, 1.5, 1e-14);
+  ExpectVector(r.normal, {0, 0, 1}, 1e-14);
+  // A segment parallel to another (a second segment piece).
+  r = Distance(segment, MakePose({0, 0, 0}, kI), segment, MakePose({1, 2, 0}, kI));
+  EXPECT_NEAR(r.distance, 2.0, 1e-14);
+  EXPECT_TRUE(r.point_a.allFinite());
+  r = Distance(point, MakePose({0, 0, 0}, kI), point, MakePose({0, 0, 0}, kI));
+  EXPECT_TRUE(r.overlapping);
+  EXPECT_TRUE(r.normal.allFinite());
+  r = Distance(point, MakePose({0.2, 0.1, 0.7}, kI), box, MakePose({0, 0, 0}, kI));
+  EXPECT_NEAR(r.distance, 0.2, 1e-14);
+  ExpectVector(r.normal, {0, 0, -1}, 1e-14);
+}
+
 TEST(Distance, RandomPolytopesMatchABruteForceOverFeaturePairs) {
   std::mt19937_64 rng(42);
   std::uniform_real_distribution<double> uniform(0.0, 1.0);
@@ -222,6 +242,34 @@ TEST(Distance, RandomPolytopesMatchABruteForceOverFeaturePairs) {
     EXPECT_LE(r.iterations, 64);
   }
   EXPECT_GT(compared, 200);
+}
+
+TEST(Distance, LargePolytopesUsingHillClimbingMatchTheBruteForce) {
+  std::mt19937_64 rng(77);
+  std::normal_distribution<double> normal(0.0, 1.0);
+  auto surface_hull = [&](double sx, double sy, double sz) {
+    std::vector<Eigen::Vector3d> p;
+    for (int i = 0; i < 120; ++i) {
+      const Eigen::Vector3d x = Eigen::Vector3d(normal(rng), normal(rng), normal(rng)).normalized();
+      p.push_back(Eigen::Vector3d(sx * x.x(), sy * x.y(), sz * x.z()));
+    }
+    return geometry::ComputeHull(p);
+  };
+  for (int trial = 0; trial < 12; ++trial) {
+    const geometry::ConvexHull ha = surface_hull(1.0, 0.6, 0.8);
+    const geometry::ConvexHull hb = surface_hull(0.5, 0.9, 0.4);
+    ASSERT_GT(ha.vertices.size(), 32u);
+    const Piece a = PieceFromHull(ha), b = PieceFromHull(hb);
+    const Pose pa = MakePose({0, 0, 0}, RandomRotation(rng));
+    const Eigen::Vector3d dir = Eigen::Vector3d(normal(rng), normal(rng), normal(rng)).normalized();
+    const Pose pb = MakePose(2.2 * dir, RandomRotation(rng));
+    DistanceCache cache;
+    const DistanceResult r = Distance(a, pa, b, pb, &cache);
+    EXPECT_NEAR(r.distance, testing::BruteForceDistance(ha, pa, hb, pb), 1e-9);
+    const DistanceResult again = Distance(a, pa, b, pb, &cache);
+    EXPECT_NEAR(again.distance, r.distance, 1e-12);
+    EXPECT_EQ(again.iterations, 1);
+  }
 }
 
 TEST(Distance, OverlapAgreesWithMprAndSeparatingAxesOnRandomPairs) {

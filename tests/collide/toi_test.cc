@@ -2,6 +2,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdio>
 #include <numbers>
 
 #include "tests/collide/shapes.h"
@@ -88,6 +89,8 @@ TEST(TimeOfImpact, SpinningBoxReachesAWallWhenAFineReferenceSearchSaysSo) {
   ASSERT_TRUE(std::isfinite(reference));
   EXPECT_NEAR(impact->time, reference, 1e-6);
   EXPECT_LE(impact->time, reference);
+  std::printf("impact at %.12f (reference %.12f) after %d distance queries\n", impact->time,
+              reference, impact->iterations);
 }
 
 TEST(TimeOfImpact, FastSpinLeavesAdvancementToTheFallbackAndStillLandsBeforeContact) {
@@ -104,6 +107,20 @@ TEST(TimeOfImpact, FastSpinLeavesAdvancementToTheFallbackAndStillLandsBeforeCont
   ASSERT_TRUE(std::isfinite(reference));
   EXPECT_NEAR(impact->time, reference, 1e-6);
   EXPECT_LE(impact->time, reference);
+  std::printf("impact at %.12f (reference %.12f) after %d distance queries\n", impact->time,
+              reference, impact->iterations);
+}
+
+TEST(TimeOfImpact, ABallSpinningAboutItsCentreDoesNotSlowTheSearch) {
+  const Piece ball = Piece::Sphere({0, 0, 0}, 0.5);
+  const Piece box = Box({0.5, 0.5, 0.5});
+  Motion spinning = Spinning({3, 0, 0}, {-0.01, 0, 0}, 1000.0);
+  const double separation = 1e-6;
+  const auto impact = TimeOfImpact(box, Static({0, 0, 0}), ball, spinning, 0.0, 1000.0, separation);
+  ASSERT_TRUE(impact.has_value());
+  ExpectLanding(*impact, separation);
+  EXPECT_NEAR(impact->time, 200.0, separation / 0.01);
+  EXPECT_LT(impact->iterations, 10);
 }
 
 TEST(TimeOfImpact, FastSphereDoesNotTunnelThroughAThinPlate) {
