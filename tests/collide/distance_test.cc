@@ -272,6 +272,28 @@ TEST(Distance, LargePolytopesUsingHillClimbingMatchTheBruteForce) {
   }
 }
 
+TEST(Distance, NearlyTouchingPolytopesMatchTheBruteForce) {
+  std::mt19937_64 rng(2024);
+  std::normal_distribution<double> normal(0.0, 1.0);
+  std::uniform_real_distribution<double> exponent(-10.0, -4.0);
+  for (int trial = 0; trial < 100; ++trial) {
+    const geometry::ConvexHull ha = RandomHull(rng, 12, 1.0);
+    const geometry::ConvexHull hb = RandomHull(rng, 12, 1.0);
+    const Piece a = PieceFromHull(ha), b = PieceFromHull(hb);
+    const Pose pa = MakePose({0, 0, 0}, RandomRotation(rng));
+    const Eigen::Vector3d dir = Eigen::Vector3d(normal(rng), normal(rng), normal(rng)).normalized();
+    Pose pb = MakePose(3.0 * dir, RandomRotation(rng));
+    // Slide b towards a until the gap is tiny.
+    const DistanceResult far = Distance(a, pa, b, pb);
+    const double gap = std::pow(10.0, exponent(rng));
+    pb.p -= (far.distance - gap) * far.normal;
+    const DistanceResult r = Distance(a, pa, b, pb);
+    const double reference = testing::BruteForceDistance(ha, pa, hb, pb);
+    EXPECT_NEAR(r.distance, reference, 1e-12 + 1e-9 * reference) << "trial " << trial;
+    EXPECT_TRUE(r.normal.allFinite());
+  }
+}
+
 TEST(Distance, OverlapAgreesWithMprAndSeparatingAxesOnRandomPairs) {
   std::mt19937_64 rng(1234);
   std::uniform_real_distribution<double> uniform(0.0, 1.0);

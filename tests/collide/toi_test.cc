@@ -137,6 +137,47 @@ TEST(TimeOfImpact, FastSphereDoesNotTunnelThroughAThinPlate) {
   EXPECT_NEAR(impact->contact.normal.z(), 1.0, 1e-12);
 }
 
+TEST(TimeOfImpact, RandomTumblingPolytopesNeverLandAfterTheFirstSampledContact) {
+  std::mt19937_64 rng(31);
+  std::normal_distribution<double> normal(0.0, 1.0);
+  const double separation = 1e-8;
+  int contacts = 0;
+  for (int trial = 0; trial < 80; ++trial) {
+    const geometry::ConvexHull ha = testing::RandomHull(rng, 10, 1.0);
+    const geometry::ConvexHull hb = testing::RandomHull(rng, 10, 0.8);
+    const Piece a = testing::PieceFromHull(ha), b = testing::PieceFromHull(hb);
+    const Eigen::Vector3d pb0 =
+        4.0 * Eigen::Vector3d(normal(rng), normal(rng), normal(rng)).normalized();
+    const Eigen::Vector3d vb =
+        -pb0 / 2.0 + 0.1 * Eigen::Vector3d(normal(rng), normal(rng), normal(rng));
+    const Eigen::Vector3d wa(normal(rng), normal(rng), normal(rng));
+    const Eigen::Vector3d wb = 3.0 * Eigen::Vector3d(normal(rng), normal(rng), normal(rng));
+    const Eigen::Matrix3d ra = testing::RandomRotation(rng), rb = testing::RandomRotation(rng);
+    Motion ma, mb;
+    ma.pose = [=](double t) {
+      return MakePose(Eigen::Vector3d::Zero(),
+                      Eigen::AngleAxisd(wa.norm() * t, wa.normalized()) * ra);
+    };
+    ma.max_angular_speed = wa.norm();
+    mb.pose = [=](double t) {
+      return MakePose(pb0 + t * vb, Eigen::AngleAxisd(wb.norm() * t, wb.normalized()) * rb);
+    };
+    mb.max_linear_speed = vb.norm();
+    mb.max_angular_speed = wb.norm();
+    const auto impact = TimeOfImpact(a, ma, b, mb, 0.0, 4.0, separation);
+    const double reference = ReferenceContact(a, ma, b, mb, 0.0, 4.0, 1e-3);
+    if (std::isfinite(reference)) {
+      ASSERT_TRUE(impact.has_value()) << "trial " << trial;
+      EXPECT_LE(impact->time, reference) << "trial " << trial;
+    }
+    if (impact) {
+      ++contacts;
+      ExpectLanding(*impact, separation);
+    }
+  }
+  EXPECT_GT(contacts, 40);
+}
+
 TEST(TimeOfImpact, NoContactInTheIntervalGivesNothing) {
   const Piece ball = Piece::Sphere({0, 0, 0}, 1.0);
   const Piece box = Box({0.5, 0.5, 0.5});
