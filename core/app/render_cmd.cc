@@ -63,6 +63,8 @@ View (default: the whole animation framed, tilted slightly, seen from +z):
   --scale S         zoom (1: the whole scene fits)
   --center X,Y,Z    centre of rotation and scaling (scene units)
   --pan X,Y,Z       translation after the rotation (scene units)
+  --follow BODY     the centre of rotation and scaling follows BODY's centre
+                    of mass (camera motion)
 
   --quiet           no messages or progress bar
   -h, --help        this help
@@ -87,8 +89,8 @@ Options:
                     at the scene's frame rate)
   --until T         simulate to T instead of the simulator's -finish
   --size WxH        picture size the camera is set up for (default 640x480)
-  --view NAME, --rot AX,AY,AZ, --scale S, --center X,Y,Z, --pan X,Y,Z
-                    the view, as for asgard render
+  --view NAME, --rot AX,AY,AZ, --scale S, --center X,Y,Z, --pan X,Y,Z,
+  --follow BODY     the view, as for asgard render (at time T)
   --quiet           no messages
   -h, --help        this help
 
@@ -165,6 +167,7 @@ struct Common {
   std::string view_name;
   std::optional<Eigen::Vector3d> rot_degrees, center, pan;
   std::optional<double> scale;
+  std::string follow;  // body whose centre of mass the view centre tracks
   bool quiet = false;
 };
 
@@ -215,6 +218,10 @@ int ParseCommon(const std::vector<std::string>& args, size_t& i, Common& c, std:
     auto v = value();
     if (!v) return fail("--view needs the name of a view element");
     c.view_name = *v;
+  } else if (a == "--follow") {
+    auto v = value();
+    if (!v || v->empty()) return fail("--follow needs a body name");
+    c.follow = *v;
   } else if (a == "--rot" || a == "--center" || a == "--pan") {
     auto v = value();
     Eigen::Vector3d x;
@@ -243,6 +250,14 @@ struct Loaded {
   std::unique_ptr<render::SceneSampler> sampler;
   render::ViewState view;
   std::vector<double> times;
+  int follow = -1;  // body index for --follow
+
+  // The camera at time t: the view centre follows the --follow body.
+  render::Camera CameraAt(double t, int width, int height) const {
+    render::ViewState v = view;
+    if (follow >= 0) v.center = sampler->Poses(t)[follow].p;
+    return render::MakeCamera(v, width, height);
+  }
 };
 
 // Simulates and prepares the view and times.  Returns an exit status, or -1
@@ -299,6 +314,12 @@ int Load(const Common& c, const char* help, bool movie, Loaded& l) {
   if (c.scale) l.view.scale = *c.scale;
   if (c.center) l.view.center = *c.center;
   if (c.pan) l.view.position = *c.pan;
+  if (!c.follow.empty()) {
+    const auto& bodies = l.sampler->bodies();
+    for (size_t b = 0; b < bodies.size(); ++b)
+      if (bodies[b].name == c.follow) l.follow = static_cast<int>(b);
+    if (l.follow < 0) return Usage("--follow: the scene has no body '" + c.follow + "'", help);
+  }
   return -1;
 }
 
@@ -377,7 +398,6 @@ int RenderCommand(const std::vector<std::string>& args) {
 
   Loaded l;
   if (const int status = Load(c, kRenderHelp, movie, l); status >= 0) return status;
-  const render::Camera camera = render::MakeCamera(l.view, c.width, c.height);
   const auto lights = l.sampler->SceneLights();
   std::vector<std::vector<Eigen::Vector3d>> paths;
   if (overlays.paths) paths = l.sampler->Paths(l.sampler->FrameTimes());
@@ -386,7 +406,7 @@ int RenderCommand(const std::vector<std::string>& args) {
     f.sampler = l.sampler.get();
     f.t = t;
     f.poses = l.sampler->Poses(t);
-    f.camera = camera;
+    f.camera = l.CameraAt(t, c.width, c.height);
     f.view_radius = l.view.radius / l.view.scale;
     f.paths = &paths;
     return f;
@@ -403,7 +423,7 @@ int RenderCommand(const std::vector<std::string>& args) {
   }
   auto raster = [&](const render::FrameInput& f) {
     if (!shaded) return render::RenderWire(f, overlays);
-    render::Image img = renderer->Render(*l.sampler, f.poses, camera, lights);
+    render::Image img = renderer->Render(*l.sampler, f.poses, f.camera, lights);
     render::OverlayImage(img, f, overlays);
     return img;
   };
@@ -512,7 +532,7 @@ int ExportCommand(const std::vector<std::string>& args) {
   formats::StillScene s;
   s.sampler = l.sampler.get();
   s.t = c.t.value_or(l.sampler->t0());
-  s.camera = render::MakeCamera(l.view, c.width, c.height);
+  s.camera = l.CameraAt(s.t, c.width, c.height);
   s.lights = l.sampler->SceneLights();
   std::string error;
   bool ok = false;

@@ -209,7 +209,9 @@ TEST(Gltf, StructureAndAnimationAreConsistent) {
 
 // Runs asgard with `args`; returns the exit status, output in `out`.
 int Asgard(const std::string& args, std::string* out = nullptr) {
-  const std::string log = std::string(ASGARD_BINARY_DIR) + "/render-test-output/asgard.log";
+  // One log per test: ctest runs tests in parallel processes.
+  const std::string log = std::string(ASGARD_BINARY_DIR) + "/render-test-output/asgard-" +
+                          ::testing::UnitTest::GetInstance()->current_test_info()->name() + ".log";
   const int rc = t::Run("'" + kAsgard + "' " + args + " > '" + log + "' 2>&1");
   if (out) *out = t::ReadText(log);
   return rc;
@@ -258,7 +260,7 @@ TEST(Movie, WebmAndGif) {
   }
 }
 
-TEST(Cli, RenderUsageAndFailures) {
+TEST(RenderCli, RenderUsageAndFailures) {
   const std::string scene = "'" + t::SourcePath("tests/render/scenes/colours.al") + "'";
   const std::string dir = t::ScratchDir("cli");
   std::string out;
@@ -275,6 +277,8 @@ TEST(Cli, RenderUsageAndFailures) {
   EXPECT_NE(out.find("within the simulated time"), std::string::npos);
   EXPECT_EQ(Asgard("render " + scene + " --view nope -o '" + dir + "/x.png'"), 2);
   EXPECT_EQ(Asgard("render " + scene + " --bogus -o '" + dir + "/x.png'"), 2);
+  EXPECT_EQ(Asgard("render " + scene + " --follow nobody -o '" + dir + "/x.png'", &out), 2);
+  EXPECT_NE(out.find("no body 'nobody'"), std::string::npos);
   EXPECT_EQ(Asgard("render /nonexistent.al -o '" + dir + "/x.png'"), 1);
   EXPECT_EQ(Asgard("render " + scene + " -o /nonexistent/dir/x.png", &out), 1);
   EXPECT_NE(out.find("cannot write"), std::string::npos);
@@ -282,7 +286,7 @@ TEST(Cli, RenderUsageAndFailures) {
   EXPECT_EQ(Asgard("export " + scene + " --format vrml -o '" + dir + "/x.wrl'"), 2);
 }
 
-TEST(Cli, NumberedFramesAndStills) {
+TEST(RenderCli, NumberedFramesAndStills) {
   const std::string scene = "'" + t::SourcePath("tests/render/scenes/colours.al") + "'";
   const std::string dir = t::ScratchDir("cli2");
   std::string out;
@@ -304,6 +308,11 @@ TEST(Cli, NumberedFramesAndStills) {
             0)
       << out;
   EXPECT_EQ(t::ReadText(dir + "/s.ppm").substr(0, 9), "P6\n32 24\n");
+  ASSERT_EQ(Asgard("render " + scene + " --frames 0:1:2 --follow b1 --size 32x24 -o '" + dir +
+                       "/follow.pdf'",
+                   &out),
+            0)
+      << out;
   ASSERT_EQ(Asgard("export " + scene + " -t 0.25 -o '" + dir + "/s.pov'", &out), 0) << out;
   ASSERT_EQ(Asgard("export " + scene + " --format rayshade -o '" + dir + "/s.ray'", &out), 0)
       << out;

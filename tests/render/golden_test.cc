@@ -111,7 +111,9 @@ class VectorOutput : public ::testing::Test {
   void SetUp() override {
     fixture_ = std::make_unique<Fixture>("samples/pendulum.al", 1.0, PendulumCloseUp());
     ASSERT_TRUE(fixture_->run.ok);
-    dir_ = testing::ScratchDir("vector");
+    // A directory per test: ctest runs tests in parallel processes.
+    dir_ = testing::ScratchDir(std::string("vector-") +
+                               ::testing::UnitTest::GetInstance()->current_test_info()->name());
   }
   bool Write(const std::string& path, VectorDocument::Format format, int pages) {
     VectorDocument doc(path, format, 320, 240);
