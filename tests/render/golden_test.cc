@@ -4,7 +4,9 @@
 //
 // Regenerate the goldens with ASGARD_UPDATE_GOLDEN=1 and look at them.
 #include <gtest/gtest.h>
+#ifdef ASGARD_HAVE_LIBXML2
 #include <libxml/parser.h>
+#endif
 
 #include <cstdlib>
 
@@ -136,13 +138,17 @@ class VectorOutput : public ::testing::Test {
 TEST_F(VectorOutput, SvgParses) {
   const std::string path = dir_ + "/p.svg";
   ASSERT_TRUE(Write(path, VectorDocument::Format::kSvg, 1));
+  EXPECT_NE(testing::ReadText(path).find("<path"), std::string::npos);
+#ifdef ASGARD_HAVE_LIBXML2
   xmlDocPtr doc = xmlReadFile(path.c_str(), nullptr, XML_PARSE_NONET);
   ASSERT_NE(doc, nullptr);
   const xmlNode* root = xmlDocGetRootElement(doc);
   ASSERT_NE(root, nullptr);
   EXPECT_STREQ(reinterpret_cast<const char*>(root->name), "svg");
-  EXPECT_NE(testing::ReadText(path).find("<path"), std::string::npos);
   xmlFreeDoc(doc);
+#else
+  GTEST_SKIP() << "libxml2 (libxml2-dev) is not installed; the SVG was not parsed";
+#endif
 }
 
 TEST_F(VectorOutput, PdfRendersWithPdftoppm) {
