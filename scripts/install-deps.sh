@@ -14,7 +14,7 @@ packages=(
   tcl8.6-dev libeigen3-dev libsuitesparse-dev libqhull-dev libccd-dev
   nlohmann-json3-dev
   # rendering and exports
-  libcairo2-dev libpango1.0-dev libosmesa6-dev libpng-dev ffmpeg
+  libcairo2-dev libpango1.0-dev libosmesa6-dev libpng-dev libxml2-dev ffmpeg
   # tests and benchmarks
   libgtest-dev libgmock-dev libbenchmark-dev
   ghostscript poppler-utils povray

@@ -7,6 +7,7 @@
 // Exit status: 0 success, 1 scene errors or solver failure, 2 usage errors.
 #include <unistd.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <fstream>
@@ -59,6 +60,7 @@ Options:
   --single          solve all equations as one component (no partitioning)
   --sequential      run components to completion one after another
                     (no event-driven scheduling)
+  --no-collisions   ignore collisions (default: the scene's simulator -collisions)
   --quiet           no summary
   -h, --help        this help
 
@@ -85,7 +87,11 @@ bool ParseDouble(const std::string& s, double& out) {
   return !s.empty() && end && *end == '\0' && std::isfinite(out);
 }
 
-void PrintDiagnostics(const std::string& file, const std::vector<asgard::scene::Diagnostic>& ds) {
+void PrintDiagnostics(const std::string& file, std::vector<asgard::scene::Diagnostic> ds) {
+  // In source order (scene errors and equation errors are found in two passes).
+  std::stable_sort(ds.begin(), ds.end(), [](const auto& a, const auto& b) {
+    return a.span.line != b.span.line ? a.span.line < b.span.line : a.span.column < b.span.column;
+  });
   for (const auto& d : ds) std::cerr << asgard::lang::FormatDiagnostic(file, d) << "\n";
 }
 
@@ -220,6 +226,18 @@ void PrintStats(const asgard::app::Run& run) {
   }
   std::cout << "totals:\n";
   PrintCounters(std::cout, sim.totals());
+  if (run.collisions) {
+    const auto& c = run.collisions->counters();
+    std::cout << "collisions: windows " << c.windows << ", broad-phase pairs " << c.broad_phase_pairs
+              << ", narrow-phase queries " << c.narrow_phase_queries << ", distance queries "
+              << c.distance_queries << ", impacts " << run.collisions->impacts().size()
+              << " (applied " << c.impacts << ", undone " << c.invalidated_impacts << ")\n";
+    for (const auto& imp : run.collisions->impacts())
+      std::cout << "  t=" << imp.t << " " << eq.bodies[imp.a].name << " - " << eq.bodies[imp.b].name
+                << " impulse " << imp.impulse << "\n";
+  } else {
+    std::cout << "collisions: off\n";
+  }
 }
 
 int Check(const std::vector<std::string>& args) {
@@ -286,6 +304,8 @@ int Simulate(const std::vector<std::string>& args) {
       stats = true;
     } else if (a == "--quiet") {
       quiet = true;
+    } else if (a == "--no-collisions") {
+      opts.collisions = false;
     } else if (a == "--single") {
       opts.solver.partition = false;
     } else if (a == "--sequential") {

@@ -35,7 +35,12 @@ void Prepare(Run& run, std::string_view text, const RunOptions& options, bool si
   }
   const auto start = std::chrono::steady_clock::now();
   run.simulation = std::make_unique<solver::Simulation>(*run.equations, so);
+  const bool collide = options.collisions.value_or(!scene.simulator || scene.simulator->collisions);
+  if (collide && run.equations->bodies.size() >= 2)
+    run.collisions = std::make_unique<solver::CollisionMonitor>(*run.simulation);
   const bool ok = run.simulation->Run(options.progress);
+  if (run.collisions)
+    for (const auto& w : run.collisions->warnings()) run.diagnostics.push_back(w);
   run.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   if (!ok) run.solver_error = run.simulation->error();
   run.ok = ok;

@@ -11,6 +11,7 @@
 
 #include "core/physics/equations.h"
 #include "core/scene/scene.h"
+#include "core/solver/collisions.h"
 #include "core/solver/simulation.h"
 
 namespace asgard::app {
@@ -21,6 +22,7 @@ struct Run {
   scene::Scene scene;
   std::unique_ptr<physics::EquationSystem> equations;
   std::unique_ptr<solver::Simulation> simulation;
+  std::unique_ptr<solver::CollisionMonitor> collisions;  // null when collisions are off
   std::vector<scene::Diagnostic> diagnostics;  // scene and equation problems
   std::string solver_error;
   double seconds = 0.0;                        // solver wall time
@@ -31,6 +33,7 @@ struct RunOptions {
   solver::SolverOptions solver;
   std::optional<double> until;  // overrides the simulator's -finish
   bool use_scene_tolerances = true;  // simulator -rtol/-atol/-step/-maxstep
+  std::optional<bool> collisions;    // overrides simulator -collisions
   std::function<void(double)> progress;
 };
 

@@ -147,7 +147,7 @@ void BodyCommand(EvalContext& ctx, const Invocation& inv, std::string& name) {
   if (positional_shape) first = 3;
   Options o(inv, first,
             {"shape", "artbody", "init_pos", "init_rot", "init_dpos", "init_drot", "mass", "moment",
-             "color", "ct", "restitution", "static"});
+             "color", "ct", "restitution", "friction", "static"});
   CheckUnique(ctx.scene.bodies, inv, name);
   scene::Body b;
   FillBase(inv, b);
@@ -177,6 +177,7 @@ void BodyCommand(EvalContext& ctx, const Invocation& inv, std::string& name) {
   if (b.restitution && *b.restitution > 1.0) {
     o.Fail(*o.Get("restitution"), "must be between 0 and 1");
   }
+  b.friction = o.NonNegative("friction");
   b.is_static = o.Bool("static").value_or(false);
   if (positional_shape) b.options.emplace_back("shape", MakeWord(inv, 2));
   RecordOptions(inv, o, b);

@@ -33,7 +33,7 @@
 namespace asgard::lang {
 
 struct EvalLimits {
-  long command_limit = 5'000'000;  // Tcl commands per evaluation
+  long command_limit = 1'000'000;  // Tcl commands per evaluation
   int time_limit_ms = 5000;        // wall-clock time per evaluation
   size_t memory_limit_mb = 512;    // heap growth allowed during an evaluation
 };

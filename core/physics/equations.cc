@@ -141,6 +141,7 @@ class Builder {
       m.is_static = b.is_static;
       m.collision_test = b.collision_test;
       m.restitution = b.restitution.value_or(1.0);
+      m.friction = b.friction.value_or(0.0);
       m.color = b.color;
       m.centroid = shape.mass.centroid;
       const double volume = shape.mass.volume;
@@ -453,7 +454,10 @@ class Builder {
     const double c = 2.0 * std::sqrt(k * m);
     const V3 F = Sub(Scale(P.Const(-k), Sub(p1, p2)), Scale(P.Const(c), Sub(v1, v2)));
     ApplyForce(b1, F, Sub(p1, kin_[b1].p));
-    if (b2 >= 0) ApplyForce(b2, Scale(P.Const(-1.0), F), Sub(p2, kin_[b2].p));
+    if (b2 >= 0) {
+      ApplyForce(b2, Scale(P.Const(-1.0), F), Sub(p2, kin_[b2].p));
+      sys_.body_links.emplace_back(b1, b2);
+    }
   }
 
   // d/dt of an expression point: explicit time dependence plus the chain rule

@@ -86,6 +86,7 @@ struct BodyModel {
   bool is_static = false;
   bool collision_test = true;
   double restitution = 1.0;
+  double friction = 0.0;
   double mass = 1.0;
   Eigen::Matrix3d inertia = Eigen::Matrix3d::Identity();  // about CoM, body axes
   Eigen::Vector3d centroid = Eigen::Vector3d::Zero();     // CoM in shape coords
@@ -106,6 +107,7 @@ struct EquationSystem {
   std::vector<StateVariable> variables;
   std::vector<BodyModel> bodies;
   std::vector<std::shared_ptr<const TrajectoryCurve>> curves;  // Extern fn = 3*curve + axis
+  std::vector<std::pair<int, int>> body_links;  // bodies joined by a link (for artbody rules)
   double t0 = 0.0;
   double t1 = 10.0;
   std::vector<scene::Diagnostic> diagnostics;

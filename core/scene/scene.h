@@ -120,7 +120,7 @@ struct ShapeSet : ElementBase {
 
 // body NAME -shape S ?-artbody A? ?-init_pos V? ?-init_rot R? ?-init_dpos V?
 //      ?-init_drot V? ?-mass M? ?-moment I? ?-color C? ?-ct 0|1?
-//      ?-restitution E? ?-static 0|1?
+//      ?-restitution E? ?-friction MU? ?-static 0|1?
 struct Body : ElementBase {
   std::string shape;
   std::string artbody;
@@ -135,6 +135,7 @@ struct Body : ElementBase {
   std::string color;
   bool collision_test = true;  // -ct
   std::optional<double> restitution;
+  std::optional<double> friction;  // Coulomb coefficient at impacts (default 0)
   bool is_static = false;
 };
 

@@ -114,12 +114,19 @@ void Component::Initialize() {
 
 // ---- modes -----------------------------------------------------------------
 
+// One byte per variable (0: its equation; i+1: override i), then for each
+// active hold the variable and the held value's bits.
 std::string Component::ModeKey(double t) const {
   std::string key(vars_.size(), '\0');
   for (size_t j = 0; j < vars_.size(); ++j) {
     const auto& ov = sys_.variables[vars_[j]].overrides;
     for (size_t i = 0; i < ov.size(); ++i)
       if (ov[i].from <= t && t < ov[i].to) key[j] = static_cast<char>(i + 1);
+  }
+  for (const Hold& h : holds_) {
+    if (!(h.from <= t && t < h.to)) continue;
+    key.append(reinterpret_cast<const char*>(&h.local), sizeof h.local);
+    key.append(reinterpret_cast<const char*>(&h.value), sizeof h.value);
   }
   return key;
 }
@@ -130,20 +137,27 @@ Component::Mode& Component::ModeAt(double t) {
   // The interval around t where the same overrides are active.
   mode_lo_ = -std::numeric_limits<double>::infinity();
   mode_hi_ = std::numeric_limits<double>::infinity();
+  auto bound = [&](double b) {
+    if (b <= t) mode_lo_ = std::max(mode_lo_, b);
+    else mode_hi_ = std::min(mode_hi_, b);
+  };
   for (int v : vars_)
-    for (const auto& o : sys_.variables[v].overrides)
-      for (double b : {o.from, o.to}) {
-        if (b <= t) mode_lo_ = std::max(mode_lo_, b);
-        else mode_hi_ = std::min(mode_hi_, b);
-      }
+    for (const auto& o : sys_.variables[v].overrides) {
+      bound(o.from);
+      bound(o.to);
+    }
+  for (const Hold& h : holds_) {
+    bound(h.from);
+    bound(h.to);
+  }
   auto it = modes_.find(key);
-  if (it == modes_.end()) it = modes_.emplace(key, BuildMode(key)).first;
+  if (it == modes_.end()) it = modes_.emplace(key, BuildMode(key, t)).first;
   last_mode_ = it->second.get();
   last_key_ = key;
   return *last_mode_;
 }
 
-std::unique_ptr<Component::Mode> Component::BuildMode(const std::string& key) {
+std::unique_ptr<Component::Mode> Component::BuildMode(const std::string& key, double t) {
   auto m = std::make_unique<Mode>();
   auto& pool = const_cast<expr::Pool&>(sys_.pool);  // derivatives extend the pool
   const int n = static_cast<int>(vars_.size());
@@ -163,6 +177,15 @@ std::unique_ptr<Component::Mode> Component::BuildMode(const std::string& key) {
           gdots.push_back(pool.TimeDerivative(o.expr));
         }
       }
+    }
+  }
+  for (const Hold& h : holds_) {
+    if (!(h.from <= t && t < h.to)) continue;
+    outputs[h.local] = pool.Const(h.value);
+    if (!m->prescribed[h.local]) {
+      m->prescribed[h.local] = 1;
+      m->gdot_rows.push_back(h.local);
+      gdots.push_back(pool.Const(0.0));
     }
   }
   std::vector<expr::NodeId> all = outputs;
@@ -475,8 +498,9 @@ double Component::NextBreakpoint(double t) const {
 
 // ---- truncation and events -----------------------------------------------------
 
-double Component::Truncate(double t) {
-  const int keep = wave_.KeepIndex(t);
+double Component::Truncate(double t, bool strict) {
+  int keep = wave_.KeepIndex(t);
+  while (strict && keep > 0 && wave_.time(keep) >= t) --keep;
   const int removed = wave_.size() - 1 - keep;
   if (removed > 0) {
     counters_.truncated_steps += removed;
@@ -496,9 +520,34 @@ void Component::AddJump(double t, int local, double value) {
   jumps_.push_back({t, local, value});
 }
 
+void Component::AddHold(double t, int local, double value) {
+  AddBreakpoint(t);
+  holds_.push_back({t, std::numeric_limits<double>::infinity(), local, value});
+  last_mode_ = nullptr;
+}
+
+void Component::ReleaseHold(double t, int local) {
+  for (Hold& h : holds_)
+    if (h.local == local && h.from < t && t < h.to) {
+      h.to = t;
+      AddBreakpoint(t);
+    }
+  last_mode_ = nullptr;
+}
+
+bool Component::Held(int local, double t) const {
+  for (const Hold& h : holds_)
+    if (h.local == local && h.from <= t && t < h.to) return true;
+  return false;
+}
+
 void Component::ForgetAfter(double t) {
   std::erase_if(dynamic_breakpoints_, [t](double b) { return b > t; });
   std::erase_if(jumps_, [t](const Jump& j) { return j.t > t; });
+  std::erase_if(holds_, [t](const Hold& h) { return h.from > t; });
+  for (Hold& h : holds_)
+    if (h.to > t) h.to = std::numeric_limits<double>::infinity();
+  last_mode_ = nullptr;
 }
 
 std::string Component::Describe() const {

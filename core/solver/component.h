@@ -107,14 +107,19 @@ class Component {
   bool Step();
   const std::string& error() const { return error_; }
 
-  // Keeps samples up to `t` (see Waveform::KeepIndex); returns the time of
-  // the last sample kept.
-  double Truncate(double t);
+  // Keeps samples up to `t` (see Waveform::KeepIndex), or with `strict` only
+  // those before t; returns the time of the last sample kept.
+  double Truncate(double t, bool strict = false);
   // Breakpoints added while simulating (collisions, upstream jumps).  A jump
   // sets local variable `local` to `value` at t (right limit).
   void AddBreakpoint(double t);
   void AddJump(double t, int local, double value);
-  // Drops dynamic breakpoints and jumps after t.
+  // Holds local variable `local` at `value` (rate 0) from t on — a dynamic
+  // override of its equation, used for resting contact — until released.
+  void AddHold(double t, int local, double value);
+  void ReleaseHold(double t, int local);
+  bool Held(int local, double t) const;
+  // Drops dynamic breakpoints, jumps and holds after t.
   void ForgetAfter(double t);
 
  private:
@@ -123,7 +128,7 @@ class Component {
 
   Mode& ModeAt(double t);
   std::string ModeKey(double t) const;
-  std::unique_ptr<Mode> BuildMode(const std::string& key);
+  std::unique_ptr<Mode> BuildMode(const std::string& key, double t);
   // Fills the global value array with y and with the inputs at t.
   void Load(double t, const double* y, Side side);
   void EvalF(const Mode& m, double t, const double* y, double* out, Side side, bool landing);
@@ -155,6 +160,13 @@ class Component {
     double value;
   };
   std::vector<Jump> jumps_;
+  struct Hold {
+    double from;
+    double to;
+    int local;
+    double value;
+  };
+  std::vector<Hold> holds_;
   Waveform wave_;
   std::map<std::string, std::unique_ptr<Mode>> modes_;
   Mode* last_mode_ = nullptr;

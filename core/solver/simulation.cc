@@ -137,29 +137,29 @@ bool Simulation::Run(const std::function<void(double)>& progress) {
   return true;
 }
 
-void Simulation::Truncate(int c, double t) {
+void Simulation::Truncate(int c, double t, bool strict) {
   // Cut times propagate in dependency order (components are numbered in
   // it), so each component is cut once, to the earliest time required.
+  ++truncate_depth_;
   const size_t n = components_.size();
   std::vector<double> cut(n, std::numeric_limits<double>::infinity());
   cut[c] = t;
   std::vector<int> affected;
   for (size_t k = static_cast<size_t>(c); k < n; ++k) {
     if (cut[k] == std::numeric_limits<double>::infinity()) continue;
-    const double kept = components_[k]->Truncate(cut[k]);
+    const double kept = components_[k]->Truncate(cut[k], strict && k == static_cast<size_t>(c));
     components_[k]->ForgetAfter(kept);
     affected.push_back(static_cast<int>(k));
     if (on_truncate) on_truncate(*this, static_cast<int>(k), kept);
     for (int d : partition_.downstream[k]) cut[d] = std::min(cut[d], kept);
   }
   RepairQueue(affected);
+  if (--truncate_depth_ == 0 && after_truncate) after_truncate(*this);
 }
 
-void Simulation::SetValueAt(int var, double t, double value) {
+void Simulation::PrepareDiscontinuity(int var, double t) {
   const int c = partition_.component_of[var];
   Truncate(c, t);
-  Component& comp = *components_[c];
-  comp.AddJump(t, local_index_[var], value);
   // Readers must land on t too: their rates jump there.
   std::vector<int> stack{c};
   std::vector<char> seen(components_.size(), 0);
@@ -173,7 +173,37 @@ void Simulation::SetValueAt(int var, double t, double value) {
       stack.push_back(d);
     }
   }
+}
+
+void Simulation::SetValueAt(int var, double t, double value) {
+  ++truncate_depth_;
+  PrepareDiscontinuity(var, t);
+  const int c = partition_.component_of[var];
+  components_[c]->AddJump(t, local_index_[var], value);
   RepairQueue({c});
+  if (--truncate_depth_ == 0 && after_truncate) after_truncate(*this);
+}
+
+void Simulation::HoldAt(int var, double t, double value) {
+  ++truncate_depth_;
+  PrepareDiscontinuity(var, t);
+  const int c = partition_.component_of[var];
+  components_[c]->AddHold(t, local_index_[var], value);
+  RepairQueue({c});
+  if (--truncate_depth_ == 0 && after_truncate) after_truncate(*this);
+}
+
+void Simulation::ReleaseAt(int var, double t) {
+  ++truncate_depth_;
+  PrepareDiscontinuity(var, t);
+  const int c = partition_.component_of[var];
+  components_[c]->ReleaseHold(t, local_index_[var]);
+  RepairQueue({c});
+  if (--truncate_depth_ == 0 && after_truncate) after_truncate(*this);
+}
+
+bool Simulation::Held(int var, double t) const {
+  return components_[partition_.component_of[var]]->Held(local_index_[var], t);
 }
 
 void Simulation::RepairQueue(const std::vector<int>& affected) {

@@ -61,6 +61,8 @@ class Simulation {
   int component_count() const { return static_cast<int>(components_.size()); }
   const Component& component(int c) const { return *components_[c]; }
   int component_of(int var) const { return partition_.component_of[var]; }
+  // Index of `var` within its component's waveform.
+  int local_index(int var) const { return local_index_[var]; }
   Counters totals() const;
   // The least time every component has reached.
   double time_reached() const;
@@ -69,16 +71,24 @@ class Simulation {
   double Value(int var, double t, Side side = Side::kRight) const;
   double Rate(int var, double t, Side side = Side::kRight) const;
 
-  // Cuts component c back to t and everything reading from it (see above).
-  void Truncate(int c, double t);
+  // Cuts component c back to t (with `strict`, to before t) and everything
+  // reading from it (see above).
+  void Truncate(int c, double t, bool strict = false);
   // Sets `var` to `value` at time t (right limit), as a collision impulse
   // does: truncates its component to t and makes it restart there.
   void SetValueAt(int var, double t, double value);
+  // Holds `var` at `value` from t on (resting contact), or ends the hold at t.
+  void HoldAt(int var, double t, double value);
+  void ReleaseAt(int var, double t);
+  bool Held(int var, double t) const;
 
   // Called after every accepted step of a component (collision detection).
   std::function<void(Simulation&, int component)> after_step;
-  // Called for each component truncated, with the time it keeps.
+  // Called for each component truncated, with the time it keeps, and once
+  // after the outermost Truncate or SetValueAt call has finished (observers
+  // that react by truncating more do it there, not inside on_truncate).
   std::function<void(Simulation&, int component, double t)> on_truncate;
+  std::function<void(Simulation&)> after_truncate;
 
   // Used by components.
   double* values() { return values_.data(); }
@@ -90,6 +100,8 @@ class Simulation {
   bool Eligible(int c) const;
   void Push(int c);
   void RepairQueue(const std::vector<int>& affected);
+  // Truncates var's component to t and makes every reader land on t.
+  void PrepareDiscontinuity(int var, double t);
 
   const physics::EquationSystem& sys_;
   SolverOptions options_;
@@ -110,6 +122,7 @@ class Simulation {
   std::vector<char> queued_;
   std::string error_;
   bool failed_ = false;
+  int truncate_depth_ = 0;
 };
 
 }  // namespace asgard::solver

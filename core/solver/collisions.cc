@@ -1,0 +1,664 @@
+// The collision monitor (design note in collisions.h).
+//
+// Stages per window: Boxes → BroadPhase → FirstImpact per pair (TimeOfImpact
+// per piece pair) → Respond to the earliest → (truncations) → AfterTruncate
+// invalidates what depended on truncated data.
+#include "core/solver/collisions.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+namespace asgard::solver {
+namespace {
+
+constexpr long kEpochs = 1024;
+constexpr double kInf = std::numeric_limits<double>::infinity();
+
+// Range of the cubic Hermite interpolant on [0, 1] ⊇ [s0, s1] (value or
+// derivative), exactly: endpoints and interior critical points.
+struct Cubic {
+  double a, b, c, d;  // p(s) = a + b s + c s² + d s³
+  double operator()(double s) const { return a + s * (b + s * (c + s * d)); }
+  double Derivative(double s) const { return b + s * (2 * c + 3 * s * d); }
+};
+
+Cubic HermiteCubic(double x0, double f0, double x1, double f1, double h) {
+  const double m0 = f0 * h, m1 = f1 * h;
+  return {x0, m0, -3 * x0 - 2 * m0 + 3 * x1 - m1, 2 * x0 + m0 - 2 * x1 + m1};
+}
+
+// Critical points of a quadratic q(s) = b + 2c s + 3d s² (for the value) or
+// of the linear derivative of the derivative (for the rate).
+void ValueRange(const Cubic& p, double s0, double s1, double& lo, double& hi) {
+  auto take = [&](double s) {
+    if (s < s0 || s > s1) return;
+    const double v = p(s);
+    lo = std::min(lo, v);
+    hi = std::max(hi, v);
+  };
+  take(s0);
+  take(s1);
+  const double A = 3 * p.d, B = 2 * p.c, C = p.b;
+  if (A == 0) {
+    if (B != 0) take(-C / B);
+    return;
+  }
+  const double disc = B * B - 4 * A * C;
+  if (disc < 0) return;
+  const double r = std::sqrt(disc);
+  take((-B - r) / (2 * A));
+  take((-B + r) / (2 * A));
+}
+
+// Largest |p''|/h² on [s0, s1] (p'' is linear in s).
+double AccelMax(const Cubic& p, double s0, double s1, double h) {
+  auto acc = [&](double s) { return std::abs(2 * p.c + 6 * p.d * s); };
+  return std::max(acc(s0), acc(s1)) / (h * h);
+}
+
+double RateMax(const Cubic& p, double s0, double s1, double h) {
+  double m = std::max(std::abs(p.Derivative(s0)), std::abs(p.Derivative(s1)));
+  if (p.d != 0) {
+    const double s = -p.c / (3 * p.d);
+    if (s > s0 && s < s1) m = std::max(m, std::abs(p.Derivative(s)));
+  }
+  return m / h;
+}
+
+// Points of a piece's support feature in direction n (world): the vertices
+// within `tol` of the extreme, or a sphere's single support point.
+std::vector<Eigen::Vector3d> SupportFeature(const collide::Piece& piece, const collide::Pose& pose,
+                                            const Eigen::Vector3d& n, double tol) {
+  if (piece.is_sphere) return {pose.p + pose.R * piece.center + piece.radius * n};
+  double best = -kInf;
+  std::vector<Eigen::Vector3d> world;
+  for (const auto& v : piece.vertices) {
+    world.push_back(pose.p + pose.R * v);
+    best = std::max(best, world.back().dot(n));
+  }
+  std::vector<Eigen::Vector3d> out;
+  for (const auto& w : world)
+    if (w.dot(n) >= best - tol) out.push_back(w);
+  return out;
+}
+
+// Convex polygon (2D, counter-clockwise) of a point set: gift wrapping,
+// collinear points dropped.
+std::vector<Eigen::Vector2d> ConvexPolygon(std::vector<Eigen::Vector2d> pts) {
+  std::sort(pts.begin(), pts.end(), [](const auto& a, const auto& b) {
+    return a.x() != b.x() ? a.x() < b.x() : a.y() < b.y();
+  });
+  if (pts.size() < 3) return pts;
+  auto cross = [](const Eigen::Vector2d& o, const Eigen::Vector2d& a, const Eigen::Vector2d& b) {
+    return (a - o).x() * (b - o).y() - (a - o).y() * (b - o).x();
+  };
+  std::vector<Eigen::Vector2d> hull(2 * pts.size());
+  size_t k = 0;
+  for (size_t i = 0; i < pts.size(); ++i) {
+    while (k >= 2 && cross(hull[k - 2], hull[k - 1], pts[i]) <= 0) --k;
+    hull[k++] = pts[i];
+  }
+  for (size_t i = pts.size() - 1, t = k + 1; i > 0; --i) {
+    while (k >= t && cross(hull[k - 2], hull[k - 1], pts[i - 1]) <= 0) --k;
+    hull[k++] = pts[i - 1];
+  }
+  hull.resize(k - 1);
+  return hull;
+}
+
+// Clips polygon `subject` by convex CCW polygon `clip` (Sutherland–Hodgman).
+std::vector<Eigen::Vector2d> Clip(std::vector<Eigen::Vector2d> subject,
+                                  const std::vector<Eigen::Vector2d>& clip) {
+  for (size_t i = 0; i < clip.size() && !subject.empty(); ++i) {
+    const Eigen::Vector2d a = clip[i], b = clip[(i + 1) % clip.size()];
+    auto side = [&](const Eigen::Vector2d& p) {
+      return (b - a).x() * (p - a).y() - (b - a).y() * (p - a).x();
+    };
+    std::vector<Eigen::Vector2d> out;
+    for (size_t j = 0; j < subject.size(); ++j) {
+      const Eigen::Vector2d p = subject[j], q = subject[(j + 1) % subject.size()];
+      const double sp = side(p), sq = side(q);
+      if (sp >= 0) out.push_back(p);
+      if ((sp >= 0) != (sq >= 0)) out.push_back(p + (q - p) * (sp / (sp - sq)));
+    }
+    subject = std::move(out);
+  }
+  return subject;
+}
+
+// Where the impulse acts: the centre of the contact patch — the overlap of
+// the two support features (face, edge or vertex) seen along the normal.
+// GJK's closest points are one arbitrary pair when faces or edges are
+// parallel; pushing there would spin two cubes that meet face to face.
+Eigen::Vector3d ContactPoint(const collide::Piece& a, const collide::Pose& pa,
+                             const collide::Piece& b, const collide::Pose& pb,
+                             const collide::DistanceResult& c, double tol) {
+  const Eigen::Vector3d mid = 0.5 * (c.point_a + c.point_b);
+  if (a.is_sphere || b.is_sphere) return mid;
+  const Eigen::Vector3d n = c.normal;
+  const auto fa = SupportFeature(a, pa, n, tol);
+  const auto fb = SupportFeature(b, pb, -n, tol);
+  if (fa.size() == 1) return fa[0] + 0.5 * (c.point_b - c.point_a);
+  if (fb.size() == 1) return fb[0] - 0.5 * (c.point_b - c.point_a);
+  // Plane coordinates.
+  const Eigen::Vector3d u = n.unitOrthogonal(), v = n.cross(u);
+  auto flat = [&](const std::vector<Eigen::Vector3d>& pts) {
+    std::vector<Eigen::Vector2d> out;
+    for (const auto& p : pts) out.emplace_back((p - mid).dot(u), (p - mid).dot(v));
+    return ConvexPolygon(out);
+  };
+  const auto pa2 = flat(fa), pb2 = flat(fb);
+  std::vector<Eigen::Vector2d> patch;
+  if (pb2.size() >= 3) patch = Clip(pa2, pb2);
+  else if (pa2.size() >= 3) patch = Clip(pb2, pa2);
+  else {
+    // Two segments: the centre of their overlap, or the closest points' midpoint.
+    return mid;
+  }
+  if (patch.empty()) return mid;
+  Eigen::Vector2d centre = Eigen::Vector2d::Zero();
+  for (const auto& p : patch) centre += p;
+  centre /= static_cast<double>(patch.size());
+  // The vertex average is the centroid for the symmetric patches that matter
+  // (face on face, edge on face); area weighting is not needed for the
+  // direction of the push.
+  return mid + centre.x() * u + centre.y() * v;
+}
+
+}  // namespace
+
+CollisionMonitor::CollisionMonitor(Simulation& sim, double separation)
+    : sim_(sim), sys_(sim.system()), separation_(separation) {
+  epoch_length_ = (sys_.t1 - sys_.t0) / kEpochs;
+  bodies_.resize(sys_.bodies.size());
+  bodies_of_component_.resize(sim.component_count());
+  double min_radius = kInf;
+  for (size_t b = 0; b < sys_.bodies.size(); ++b) {
+    const physics::BodyModel& m = sys_.bodies[b];
+    BodyInfo& info = bodies_[b];
+    info.infinite = m.is_static;
+    for (const auto& piece : m.pieces) {
+      if (piece.is_sphere) {
+        info.pieces.push_back(collide::Piece::Sphere(piece.center, piece.radius));
+      } else {
+        std::vector<std::vector<int>> faces;
+        for (const auto& f : piece.hull.faces) faces.push_back(f.vertices);
+        info.pieces.push_back(collide::Piece::Polytope(piece.hull.vertices, faces));
+      }
+      info.radius = std::max(info.radius, info.pieces.back().bound_radius);
+    }
+    info.collidable = !info.pieces.empty();
+    if (info.collidable) min_radius = std::min(min_radius, info.radius);
+    if (m.first_var >= 0) {
+      for (int s = 0; s < physics::kBodySlots; ++s)
+        info.components.push_back(sim.component_of(m.first_var + s));
+      std::sort(info.components.begin(), info.components.end());
+      info.components.erase(std::unique(info.components.begin(), info.components.end()),
+                            info.components.end());
+      for (int c : info.components) bodies_of_component_[c].push_back(static_cast<int>(b));
+    }
+    UpdateEnd(static_cast<int>(b));
+  }
+  // Bodies land this close before an impact.  Positions are only as exact as
+  // the solver's tolerance, and after an impact the components re-step to it,
+  // so the gap must exceed that error or the re-stepped bodies would overlap.
+  if (separation_ <= 0) {
+    const double r = std::isfinite(min_radius) ? min_radius : 1.0;
+    separation_ = std::max(1e-8 * r, sim.options().rtol * r + sim.options().atol);
+  }
+  for (auto [a, b] : sys_.body_links) {
+    const auto& ma = sys_.bodies[a];
+    const auto& mb = sys_.bodies[b];
+    if (!ma.artbody.empty() && ma.artbody == mb.artbody)
+      excluded_.insert({std::min(a, b), std::max(a, b)});
+  }
+  sim.after_step = [this](Simulation&, int c) { AfterStep(c); };
+  sim.on_truncate = [this](Simulation&, int c, double kept) { OnTruncate(c, kept); };
+  sim.after_truncate = [this](Simulation&) { AfterTruncate(); };
+  StartEpoch(0);
+}
+
+bool CollisionMonitor::Tested(int a, int b) const {
+  if (a == b) return false;
+  const auto& A = bodies_[a];
+  const auto& B = bodies_[b];
+  if (!A.collidable || !B.collidable || (A.infinite && B.infinite)) return false;
+  if (!sys_.bodies[a].collision_test && !sys_.bodies[b].collision_test) return false;
+  return !excluded_.count({std::min(a, b), std::max(a, b)});
+}
+
+double CollisionMonitor::EpochStart(long k) const {
+  return k >= kEpochs ? sys_.t1 : sys_.t0 + static_cast<double>(k) * epoch_length_;
+}
+
+void CollisionMonitor::UpdateEnd(int b) {
+  BodyInfo& info = bodies_[b];
+  if (info.components.empty()) {
+    info.end = sys_.t1;  // static: known for all time
+    return;
+  }
+  double end = kInf;
+  for (int c : info.components) end = std::min(end, sim_.component(c).t_end());
+  info.end = end;
+}
+
+void CollisionMonitor::StartEpoch(long k) {
+  epoch_ = k;
+  pending_ = 0;
+  if (epoch_ >= kEpochs) return;
+  const double e1 = EpochStart(epoch_ + 1);
+  for (const BodyInfo& b : bodies_)
+    if (b.collidable && b.end < e1) ++pending_;
+}
+
+void CollisionMonitor::AfterStep(int component) {
+  if (epoch_ >= kEpochs) return;
+  const double e1 = EpochStart(epoch_ + 1);
+  for (int b : bodies_of_component_[component]) {
+    const double old = bodies_[b].end;
+    UpdateEnd(b);
+    if (bodies_[b].collidable && old < e1 && bodies_[b].end >= e1) --pending_;
+  }
+  while (pending_ == 0 && epoch_ < kEpochs) {
+    if (!CheckEpoch()) break;
+    StartEpoch(epoch_ + 1);
+  }
+}
+
+// ---- the window check ----------------------------------------------------------
+
+double CollisionMonitor::MaxAbs(int var, double t0, double t1) const {
+  // Largest |value| of a variable's playback interpolant over [t0, t1].
+  const Component& comp = sim_.component(sim_.component_of(var));
+  const Waveform& w = comp.waveform();
+  const int i = sim_.local_index(var);
+  double m = std::max(std::abs(sim_.Value(var, t0)), std::abs(sim_.Value(var, t1)));
+  int k = w.KeepIndex(t0);
+  for (; k + 1 < w.size() && w.time(k) < t1; ++k) {
+    const double h = w.time(k + 1) - w.time(k);
+    if (h <= 0) continue;
+    const Cubic p = HermiteCubic(w.x(k)[i], w.f(k)[i], w.x(k + 1)[i], w.f(k + 1)[i], h);
+    const double s0 = std::max(0.0, (t0 - w.time(k)) / h), s1 = std::min(1.0, (t1 - w.time(k)) / h);
+    double lo = kInf, hi = -kInf;
+    ValueRange(p, s0, s1, lo, hi);
+    m = std::max({m, std::abs(lo), std::abs(hi)});
+  }
+  return m;
+}
+
+collide::Pose CollisionMonitor::PoseAt(int b, double t) const {
+  const physics::BodyModel& m = sys_.bodies[b];
+  collide::Pose pose;
+  if (m.first_var < 0) {
+    pose.p = m.x0;
+    pose.R = m.q0.toRotationMatrix();
+    return pose;
+  }
+  auto val = [&](int slot) { return sim_.Value(m.first_var + slot, t); };
+  pose.p = {val(physics::kX), val(physics::kY), val(physics::kZ)};
+  Eigen::Quaterniond q(val(physics::kQw), val(physics::kQx), val(physics::kQy), val(physics::kQz));
+  pose.R = q.normalized().toRotationMatrix();
+  return pose;
+}
+
+collide::Motion CollisionMonitor::MotionOf(int b, double t0, double t1) const {
+  collide::Motion motion;
+  motion.pose = [this, b](double t) { return PoseAt(b, t); };
+  const physics::BodyModel& m = sys_.bodies[b];
+  if (m.first_var < 0) return motion;
+  // Bounds on the rates of the interpolated position and orientation: the
+  // exact maxima of the Hermite derivatives over the window.
+  auto rate_max = [&](int var) {
+    const Waveform& w = sim_.component(sim_.component_of(var)).waveform();
+    const int i = sim_.local_index(var);
+    double r = 0;
+    for (int k = w.KeepIndex(t0); k + 1 < w.size() && w.time(k) < t1; ++k) {
+      const double h = w.time(k + 1) - w.time(k);
+      if (h <= 0) continue;
+      const Cubic p = HermiteCubic(w.x(k)[i], w.f(k)[i], w.x(k + 1)[i], w.f(k + 1)[i], h);
+      const double s0 = std::max(0.0, (t0 - w.time(k)) / h);
+      const double s1 = std::min(1.0, (t1 - w.time(k)) / h);
+      r = std::max(r, RateMax(p, s0, s1, h));
+    }
+    return std::max(r, std::abs(sim_.Rate(var, t0)));
+  };
+  double v2 = 0, q2 = 0, qmin2 = kInf;
+  for (int a = 0; a < 3; ++a) v2 += std::pow(rate_max(m.first_var + physics::kX + a), 2);
+  for (int a = 0; a < 4; ++a) q2 += std::pow(rate_max(m.first_var + physics::kQw + a), 2);
+  // |q| over the window is at least its smallest sampled norm minus the drift
+  // the rate allows; quaternion norms stay near 1.
+  for (double t : {t0, t1}) {
+    double n2 = 0;
+    for (int a = 0; a < 4; ++a) n2 += std::pow(sim_.Value(m.first_var + physics::kQw + a, t), 2);
+    qmin2 = std::min(qmin2, n2);
+  }
+  const double qmin = std::max(1e-3, std::sqrt(qmin2) - std::sqrt(q2) * (t1 - t0));
+  motion.max_linear_speed = std::sqrt(v2);
+  motion.max_angular_speed = 2.0 * std::sqrt(q2) / qmin;
+  return motion;
+}
+
+bool CollisionMonitor::Prescribed(int b, double t) const {
+  const physics::BodyModel& m = sys_.bodies[b];
+  if (m.first_var < 0) return false;
+  for (int s = 0; s < physics::kBodySlots; ++s)
+    for (const auto& o : sys_.variables[m.first_var + s].overrides)
+      if (o.from <= t && t < o.to) return true;
+  return false;
+}
+
+bool CollisionMonitor::CheckEpoch() {
+  const double e0 = EpochStart(epoch_), e1 = EpochStart(epoch_ + 1);
+  ++counters_.windows;
+  collide::BroadPhase broad;
+  for (size_t b = 0; b < bodies_.size(); ++b) {
+    const BodyInfo& info = bodies_[b];
+    if (!info.collidable) continue;
+    Eigen::Vector3d lo, hi;
+    const physics::BodyModel& m = sys_.bodies[b];
+    for (int a = 0; a < 3; ++a) {
+      if (m.first_var < 0) {
+        lo[a] = hi[a] = m.x0[a];
+        continue;
+      }
+      const int var = m.first_var + physics::kX + a;
+      const Waveform& w = sim_.component(sim_.component_of(var)).waveform();
+      const int i = sim_.local_index(var);
+      double l = sim_.Value(var, e0), h = l;
+      for (int k = w.KeepIndex(e0); k + 1 < w.size() && w.time(k) < e1; ++k) {
+        const double dt = w.time(k + 1) - w.time(k);
+        if (dt <= 0) continue;
+        const Cubic p = HermiteCubic(w.x(k)[i], w.f(k)[i], w.x(k + 1)[i], w.f(k + 1)[i], dt);
+        ValueRange(p, std::max(0.0, (e0 - w.time(k)) / dt), std::min(1.0, (e1 - w.time(k)) / dt),
+                   l, h);
+      }
+      lo[a] = l;
+      hi[a] = h;
+    }
+    const Eigen::Vector3d r = Eigen::Vector3d::Constant(info.radius + separation_);
+    broad.Add(static_cast<int>(b), lo - r, hi + r);
+  }
+  const auto pairs = broad.Pairs();
+  counters_.broad_phase_pairs += static_cast<long>(pairs.size());
+  std::optional<Impact> best;
+  for (auto [a, b] : pairs) {
+    if (!Tested(a, b)) continue;
+    double start = e0;
+    for (auto it = impacts_.rbegin(); it != impacts_.rend() && it->t >= e0; ++it)
+      if (it->a == a || it->b == a || it->a == b || it->b == b) start = std::max(start, it->t);
+    if (start >= e1) continue;
+    auto impact = FirstImpact(a, b, start, e1);
+    if (impact && (!best || impact->t < best->t)) best = impact;
+  }
+  if (!best) return true;
+  Respond(*best);
+  return false;
+}
+
+double CollisionMonitor::AccelBound(int body, double t0, double t1) const {
+  const physics::BodyModel& m = sys_.bodies[body];
+  if (m.first_var < 0) return 0.0;
+  double sum2 = 0;
+  for (int axis = 0; axis < 3; ++axis) {
+    const int var = m.first_var + physics::kX + axis;
+    const Waveform& w = sim_.component(sim_.component_of(var)).waveform();
+    const int i = sim_.local_index(var);
+    double amax = 0;
+    for (int k = w.KeepIndex(t0); k + 1 < w.size() && w.time(k) < t1; ++k) {
+      const double h = w.time(k + 1) - w.time(k);
+      if (h <= 0) continue;
+      const Cubic p = HermiteCubic(w.x(k)[i], w.f(k)[i], w.x(k + 1)[i], w.f(k + 1)[i], h);
+      amax = std::max(amax, AccelMax(p, std::max(0.0, (t0 - w.time(k)) / h),
+                                     std::min(1.0, (t1 - w.time(k)) / h), h));
+    }
+    sum2 += amax * amax;
+  }
+  return std::sqrt(sum2);
+}
+
+std::optional<Impact> CollisionMonitor::FirstImpact(int a, int b, double start, double end) {
+  collide::Motion ma = MotionOf(a, start, end), mb = MotionOf(b, start, end);
+  // Distance changes at most as fast as the relative velocity: bound it by
+  // its value at the start plus both bodies' largest accelerations over the
+  // window (two balls moving together close at 0, not at |v_a| + |v_b|).
+  {
+    auto rate = [&](int body) {
+      const physics::BodyModel& m = sys_.bodies[body];
+      Eigen::Vector3d v = Eigen::Vector3d::Zero();
+      if (m.first_var >= 0)
+        for (int k = 0; k < 3; ++k) v[k] = sim_.Rate(m.first_var + physics::kX + k, start);
+      return v;
+    };
+    const double relative = (rate(a) - rate(b)).norm() +
+                            (AccelBound(a, start, end) + AccelBound(b, start, end)) * (end - start);
+    const double sum = ma.max_linear_speed + mb.max_linear_speed;
+    if (relative < sum) {
+      ma.max_linear_speed = relative;
+      mb.max_linear_speed = 0.0;
+    }
+  }
+  // Every distance evaluation in the search places both bodies once.
+  ma.pose = [this, a](double t) {
+    ++counters_.distance_queries;
+    return PoseAt(a, t);
+  };
+  std::optional<Impact> first;
+  const collide::Pose pa0 = PoseAt(a, start), pb0 = PoseAt(b, start);
+  for (const auto& piece_a : bodies_[a].pieces) {
+    for (const auto& piece_b : bodies_[b].pieces) {
+      collide::DistanceCache cache;
+      const auto d0 = collide::Distance(piece_a, pa0, piece_b, pb0, &cache);
+      ++counters_.distance_queries;
+      double from = start;
+      double threshold = separation_;
+      if (d0.overlapping && Separating(a, b, start, d0)) {
+        // Just collided and moving apart, but overlapping by about the
+        // solver's error: continue from the moment they are clear.
+        double step = 1e-12 * std::max(1.0, std::abs(start)) + 1e-9 * (end - start);
+        bool clear = false;
+        for (from = start + step; from < end; from = std::min(end, from + step), step *= 2) {
+          const auto d = collide::Distance(piece_a, PoseAt(a, from), piece_b, PoseAt(b, from), &cache);
+          ++counters_.distance_queries;
+          if (!d.overlapping) {
+            clear = true;
+            threshold = std::min(separation_, 0.5 * d.distance);
+            break;
+          }
+        }
+        if (!clear) continue;  // in contact for the whole window, moving apart
+      } else if (d0.overlapping) {
+        if (overlap_warned_.insert({a, b}).second) {
+          scene::Diagnostic d;
+          d.severity = scene::Severity::kWarning;
+          d.message = "bodies " + sys_.bodies[a].name + " and " + sys_.bodies[b].name +
+                      " overlap at t=" + std::to_string(start) +
+                      "; their collisions are ignored while they overlap";
+          warnings_.push_back(d);
+        }
+        continue;
+      }
+      // Pieces already in contact at the start (just collided) must approach
+      // before they count again: the threshold shrinks below the gap.
+      if (!d0.overlapping && d0.distance <= separation_) threshold = 0.5 * d0.distance;
+      for (int round = 0; round < 8 && from < end; ++round) {
+        ++counters_.narrow_phase_queries;
+        auto hit = collide::TimeOfImpact(piece_a, ma, piece_b, mb, from, end, threshold, &cache);
+        if (!hit) break;
+        if (first && hit->time >= first->t) break;
+        // Approaching at the contact point?
+        const auto& c = hit->contact;
+        const Eigen::Vector3d point =
+            ContactPoint(piece_a, PoseAt(a, hit->time), piece_b, PoseAt(b, hit->time), c,
+                         1e-6 * std::max(bodies_[a].radius, bodies_[b].radius));
+        auto point_velocity = [&](int body) {
+          const physics::BodyModel& m = sys_.bodies[body];
+          if (m.first_var < 0) return Eigen::Vector3d::Zero().eval();
+          auto val = [&](int slot) { return sim_.Value(m.first_var + slot, hit->time); };
+          const collide::Pose pose = PoseAt(body, hit->time);
+          const Eigen::Vector3d v(val(physics::kDx), val(physics::kDy), val(physics::kDz));
+          const Eigen::Vector3d w =
+              pose.R * Eigen::Vector3d(val(physics::kW1), val(physics::kW2), val(physics::kW3));
+          return (v + w.cross(point - pose.p)).eval();
+        };
+        const double approach = (point_velocity(b) - point_velocity(a)).dot(c.normal);
+        if (approach < 0) {
+          Impact imp;
+          imp.t = hit->time;
+          imp.a = a;
+          imp.b = b;
+          imp.point = point;
+          imp.normal = c.normal;
+          first = imp;
+          break;
+        }
+        // Grazing or separating: look further, below the current gap.
+        from = hit->time;
+        threshold = 0.5 * std::max(c.distance, 1e-300);
+        if (c.distance <= 0) break;
+      }
+    }
+  }
+  return first;
+}
+
+// Whether the contact's points move apart along its normal at time t.
+bool CollisionMonitor::Separating(int a, int b, double t, const collide::DistanceResult& c) const {
+  const Eigen::Vector3d point = 0.5 * (c.point_a + c.point_b);
+  auto velocity = [&](int body) -> Eigen::Vector3d {
+    const physics::BodyModel& m = sys_.bodies[body];
+    if (m.first_var < 0) return Eigen::Vector3d::Zero();
+    auto val = [&](int slot) { return sim_.Value(m.first_var + slot, t); };
+    const collide::Pose pose = PoseAt(body, t);
+    const Eigen::Vector3d v(val(physics::kDx), val(physics::kDy), val(physics::kDz));
+    const Eigen::Vector3d w =
+        pose.R * Eigen::Vector3d(val(physics::kW1), val(physics::kW2), val(physics::kW3));
+    return v + w.cross(point - pose.p);
+  };
+  return (velocity(b) - velocity(a)).dot(c.normal) >= 0;
+}
+
+void CollisionMonitor::Respond(const Impact& impact) {
+  const double t = impact.t;
+  collide::BodyState state[2];
+  const int ids[2] = {impact.a, impact.b};
+  bool movable[2];
+  for (int s = 0; s < 2; ++s) {
+    const int b = ids[s];
+    const physics::BodyModel& m = sys_.bodies[b];
+    const collide::Pose pose = PoseAt(b, t);
+    collide::BodyState& st = state[s];
+    st.com = pose.p;
+    movable[s] = m.first_var >= 0 && !Prescribed(b, t);
+    if (m.first_var >= 0) {
+      auto val = [&](int slot) { return sim_.Value(m.first_var + slot, t, Side::kLeft); };
+      st.v = {val(physics::kDx), val(physics::kDy), val(physics::kDz)};
+      st.w = pose.R * Eigen::Vector3d(val(physics::kW1), val(physics::kW2), val(physics::kW3));
+    }
+    if (movable[s]) {
+      st.inv_mass = 1.0 / m.mass;
+      st.inv_inertia = pose.R * m.inertia.inverse() * pose.R.transpose();
+    }
+  }
+  const double e = sys_.bodies[impact.a].restitution * sys_.bodies[impact.b].restitution;
+  const double mu = std::sqrt(sys_.bodies[impact.a].friction * sys_.bodies[impact.b].friction);
+  Impact recorded = impact;
+  recorded.impulse =
+      collide::ApplyImpulse(state[0], state[1], impact.point, impact.normal, e, mu);
+  ++counters_.impacts;
+  auto pos = std::upper_bound(impacts_.begin(), impacts_.end(), recorded,
+                              [](const Impact& x, const Impact& y) {
+                                return x.t != y.t ? x.t < y.t : std::tie(x.a, x.b) < std::tie(y.a, y.b);
+                              });
+  impacts_.insert(pos, recorded);
+  responding_ = true;
+  respond_time_ = t;
+  for (int s = 0; s < 2; ++s) {
+    if (!movable[s]) continue;
+    const physics::BodyModel& m = sys_.bodies[ids[s]];
+    const Eigen::Matrix3d R = PoseAt(ids[s], t).R;
+    // A body resting on something was held there; the impact releases it.
+    for (int a = 0; a < 3; ++a)
+      for (int slot : {physics::kX + a, physics::kDx + a})
+        if (sim_.Held(m.first_var + slot, t)) sim_.ReleaseAt(m.first_var + slot, t);
+    const std::vector<int> held = RestingAxes(ids[s], s == 0 ? impact.normal : -impact.normal,
+                                              movable[1 - s], t, state[s].v);
+    const Eigen::Vector3d w_body = R.transpose() * state[s].w;
+    for (int a = 0; a < 3; ++a) {
+      sim_.SetValueAt(m.first_var + physics::kDx + a, t, state[s].v[a]);
+      sim_.SetValueAt(m.first_var + physics::kW1 + a, t, w_body[a]);
+    }
+    for (int a : held) {
+      sim_.HoldAt(m.first_var + physics::kX + a, t, sim_.Value(m.first_var + physics::kX + a, t));
+      sim_.HoldAt(m.first_var + physics::kDx + a, t, 0.0);
+    }
+  }
+  responding_ = false;
+}
+
+// Resting contact: against an immovable partner, an impact after which the
+// body would rise less than 1e-6 of its radius before falling back ends the
+// bouncing (otherwise an inelastic bounce repeats ever faster, without end,
+// before the time it should come to rest).  The body's motion along the
+// normal stops and is held: along that axis when the normal is a coordinate
+// axis, in all three translations otherwise.  Returns the held axes.
+std::vector<int> CollisionMonitor::RestingAxes(int body, const Eigen::Vector3d& n_into,
+                                               bool partner_movable, double t,
+                                               Eigen::Vector3d& v) {
+  if (partner_movable) return {};
+  const physics::BodyModel& m = sys_.bodies[body];
+  Eigen::Vector3d a;
+  for (int k = 0; k < 3; ++k) a[k] = sim_.Rate(m.first_var + physics::kDx + k, t, Side::kLeft);
+  const double push = a.dot(n_into);   // acceleration into the partner
+  const double rise = -v.dot(n_into);  // speed leaving it
+  if (push <= 0 || rise * rise / (2 * push) >= 1e-6 * bodies_[body].radius) return {};
+  v -= v.dot(n_into) * n_into;
+  int axis = 0;
+  n_into.cwiseAbs().maxCoeff(&axis);
+  if (std::abs(n_into[axis]) > 1 - 1e-9) {
+    v[axis] = 0.0;
+    return {axis};
+  }
+  v.setZero();
+  return {0, 1, 2};
+}
+
+// ---- invalidation ------------------------------------------------------------------
+
+void CollisionMonitor::OnTruncate(int component, double kept) {
+  for (int b : bodies_of_component_[component]) truncated_.push_back({b, kept});
+}
+
+void CollisionMonitor::AfterTruncate() {
+  if (in_after_truncate_) return;
+  in_after_truncate_ = true;
+  double earliest = kInf;
+  while (!truncated_.empty()) {
+    auto work = std::move(truncated_);
+    truncated_.clear();
+    for (auto [b, kept] : work) {
+      UpdateEnd(b);
+      earliest = std::min(earliest, kept);
+      // Impacts after `kept` involving b were computed from data that is gone.
+      const double limit = responding_ ? std::max(kept, respond_time_) : kept;
+      for (size_t i = 0; i < impacts_.size();) {
+        const Impact imp = impacts_[i];
+        if (imp.t > limit && (imp.a == b || imp.b == b)) {
+          impacts_.erase(impacts_.begin() + static_cast<long>(i));
+          ++counters_.invalidated_impacts;
+          const int partner = imp.a == b ? imp.b : imp.a;
+          for (int c : bodies_[partner].components) sim_.Truncate(c, imp.t, /*strict=*/true);
+          continue;
+        }
+        ++i;
+      }
+    }
+  }
+  in_after_truncate_ = false;
+  if (std::isfinite(earliest) && (earliest < EpochStart(epoch_ + 1) || epoch_ >= kEpochs)) {
+    const long k = static_cast<long>(std::floor((earliest - sys_.t0) / epoch_length_));
+    StartEpoch(std::clamp(std::min(k, epoch_), 0L, kEpochs));
+  }
+}
+
+}  // namespace asgard::solver

@@ -1,0 +1,307 @@
+// Collisions inside the event-driven solver: impact times, impulses,
+// rollback, articulated bodies, the seed's scenes.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <fstream>
+#include <sstream>
+
+#include "core/app/pipeline.h"
+#include "tests/solver/reference_problems.h"
+
+namespace asgard {
+namespace {
+
+using SceneRun = app::Run;
+using physics::BodySlot;
+
+SceneRun SimulateOk(const std::string& text, double rtol = 1e-8, double atol = 1e-10) {
+  app::RunOptions opts;
+  opts.solver.rtol = rtol;
+  opts.solver.atol = atol;
+  SceneRun run = app::Simulate(text, opts);
+  for (const auto& d : run.diagnostics)
+    if (d.severity == scene::Severity::kError) ADD_FAILURE() << d.span.line << ": " << d.message;
+  EXPECT_TRUE(run.ok) << run.solver_error;
+  return run;
+}
+
+Eigen::Vector3d Velocity(const SceneRun& run, const std::string& body, double t) {
+  const int b = run.equations->FindBody(body);
+  const int v = run.equations->bodies[b].first_var;
+  return {run.simulation->Value(v + physics::kDx, t), run.simulation->Value(v + physics::kDy, t),
+          run.simulation->Value(v + physics::kDz, t)};
+}
+
+Eigen::Vector3d Position(const SceneRun& run, const std::string& body, double t) {
+  const int b = run.equations->FindBody(body);
+  const int v = run.equations->bodies[b].first_var;
+  return {run.simulation->Value(v + physics::kX, t), run.simulation->Value(v + physics::kY, t),
+          run.simulation->Value(v + physics::kZ, t)};
+}
+
+Eigen::Vector3d Spin(const SceneRun& run, const std::string& body, double t) {
+  const auto f = app::SampleBody(*run.equations, *run.simulation, run.equations->FindBody(body), t);
+  return {f.w[0], f.w[1], f.w[2]};
+}
+
+std::string Sphere(double r) {
+  return "shape_set ball -desc {-sub {-pos {0 0 0} -sphere " + std::to_string(r) + "}}\n";
+}
+
+// The separation the solver lands at is 1e-8 of the smallest body radius; an
+// impact is reported up to separation / closing speed early.
+constexpr double kLanding = 1e-8;
+
+TEST(Collision, TwoSpheresApproachingMeetAtTwoAndSwapVelocities) {
+  const SceneRun run = SimulateOk(Sphere(1) +
+                                  "body a -shape ball -mass 1 -init_pos {0 0 0} -init_dpos {1 0 0}\n"
+                                  "body b -shape ball -mass 1 -init_pos {6 0 0} -init_dpos {-1 0 0}\n"
+                                  "simulator -finish 4\n");
+  ASSERT_EQ(run.collisions->impacts().size(), 1u);
+  EXPECT_NEAR(run.collisions->impacts()[0].t, 2.0, kLanding);
+  EXPECT_NEAR(Velocity(run, "a", 3).x(), -1.0, 1e-12);
+  EXPECT_NEAR(Velocity(run, "b", 3).x(), 1.0, 1e-12);
+  EXPECT_NEAR(Position(run, "a", 4).x(), 0.0, 1e-7);
+}
+
+TEST(Collision, HeadOnUnequalMassesGiveTheElasticResult) {
+  const SceneRun run = SimulateOk(Sphere(0.5) +
+                                  "body a -shape ball -mass 1 -init_pos {0 0 0} -init_dpos {2 0 0}\n"
+                                  "body b -shape ball -mass 3 -init_pos {3 0 0}\n"
+                                  "simulator -finish 3\n");
+  ASSERT_EQ(run.collisions->impacts().size(), 1u);
+  EXPECT_NEAR(Velocity(run, "a", 3).x(), -1.0, 1e-12);
+  EXPECT_NEAR(Velocity(run, "b", 3).x(), 1.0, 1e-12);
+}
+
+TEST(Collision, ObliqueEqualSpheresLeaveAtRightAngles) {
+  // b at rest; a moves along x with an offset of half a radius sum in y.
+  const double r = 0.5, offset = 0.5;
+  const SceneRun run = SimulateOk(Sphere(r) +
+                                  "body a -shape ball -mass 1 -init_pos {-3 " + std::to_string(offset) +
+                                  " 0} -init_dpos {1 0 0}\n"
+                                  "body b -shape ball -mass 1 -init_pos {0 0 0}\n"
+                                  "simulator -finish 5\n");
+  ASSERT_EQ(run.collisions->impacts().size(), 1u);
+  // Contact normal n from a to b at impact: (√(1 − 0.25), −0.5) for |d| = 2r = 1.
+  const Eigen::Vector3d n(std::sqrt(1 - offset * offset), -offset, 0);
+  const Eigen::Vector3d v0(1, 0, 0);
+  const Eigen::Vector3d vb = v0.dot(n) * n, va = v0 - vb;
+  // The spheres meet at a gap of up to 1e-8 r, which tilts the normal by
+  // about that much: velocities agree to a few times 5e-9.
+  EXPECT_LT((Velocity(run, "a", 5) - va).norm(), 2e-8);
+  EXPECT_LT((Velocity(run, "b", 5) - vb).norm(), 2e-8);
+  EXPECT_NEAR(Velocity(run, "a", 5).dot(Velocity(run, "b", 5)), 0.0, 1e-9);
+}
+
+TEST(Collision, IdenticalAlignedCubesFaceToFaceSwapVelocitiesWithoutSpin) {
+  const SceneRun run = SimulateOk(
+      "shape_set cube -desc {-sub {-box {1 1 1}}}\n"
+      "body a -shape cube -init_pos {0 0 0} -init_dpos {1 0 0}\n"
+      "body b -shape cube -init_pos {3 0 0} -init_dpos {-0.5 0 0}\n"
+      "simulator -finish 3\n");
+  ASSERT_EQ(run.collisions->impacts().size(), 1u);
+  EXPECT_NEAR(Velocity(run, "a", 3).x(), -0.5, 1e-9);
+  EXPECT_NEAR(Velocity(run, "b", 3).x(), 1.0, 1e-9);
+  EXPECT_LT(Spin(run, "a", 3).norm(), 1e-9);
+  EXPECT_LT(Spin(run, "b", 3).norm(), 1e-9);
+}
+
+TEST(Collision, NewtonsCradleOfThreeAndFiveBalls) {
+  struct Case {
+    std::vector<double> v0, v1;
+  };
+  for (const Case& c : {Case{{1, 0, 0}, {0, 0, 1}}, Case{{1, 1, 0, 0, 0}, {0, 0, 0, 1, 1}}}) {
+    std::string text = Sphere(0.5);
+    const size_t n = c.v0.size();
+    // Touching balls, except a gap before the first resting one.
+    for (size_t i = 0; i < n; ++i) {
+      const double x = static_cast<double>(i) * (1.0 + 1e-6) + (c.v0[i] == 0 ? 1.0 : 0.0);
+      text += "body b" + std::to_string(i) + " -shape ball -mass 1 -init_pos {" + std::to_string(x) +
+              " 0 0} -init_dpos {" + std::to_string(c.v0[i]) + " 0 0}\n";
+    }
+    text += "simulator -finish 4\n";
+    const SceneRun run = SimulateOk(text);
+    for (size_t i = 0; i < n; ++i)
+      EXPECT_NEAR(Velocity(run, "b" + std::to_string(i), 4).x(), c.v1[i], 1e-9)
+          << n << " balls, ball " << i;
+  }
+}
+
+TEST(Collision, ACubeFallingCornerFirstOnAStaticFloorKeepsItsKineticEnergy) {
+  // A unit cube rotated so a corner points down, falling at speed 2 onto a
+  // static floor (a wide flat box), no gravity.
+  const SceneRun run = SimulateOk(
+      "shape_set cube -desc {-sub {-box {1 1 1}}}\n"
+      "shape_set floor -desc {-sub {-box {20 1 20}}}\n"
+      "body c -shape cube -mass 1 -init_pos {0 3 0} -init_rot {0.6 0 0.4} -init_dpos {0 -2 0}\n"
+      "body f -shape floor -static 1 -init_pos {0 -0.5 0}\n"
+      "simulator -finish 2\n");
+  ASSERT_GE(run.collisions->impacts().size(), 1u);
+  const auto& eq = *run.equations;
+  const int c = eq.FindBody("c");
+  const double t0 = 0.0, t1 = 2.0;
+  auto energy = [&](double t) {
+    const auto s = app::SampleBody(eq, *run.simulation, c, t);
+    const Eigen::Quaterniond q(s.q[0], s.q[1], s.q[2], s.q[3]);
+    const Eigen::Matrix3d I = q.toRotationMatrix() * eq.bodies[c].inertia *
+                              q.toRotationMatrix().transpose();
+    const Eigen::Vector3d v(s.v[0], s.v[1], s.v[2]), w(s.w[0], s.w[1], s.w[2]);
+    return 0.5 * eq.bodies[c].mass * v.squaredNorm() + 0.5 * w.dot(I * w);
+  };
+  EXPECT_NEAR(energy(t1), energy(t0), 1e-7 * energy(t0));
+  // It spins after the impact and moves up.
+  EXPECT_GT(Spin(run, "c", t1).norm(), 0.1);
+  EXPECT_GT(Velocity(run, "c", t1).y(), 0.0);
+}
+
+TEST(Collision, AFastSphereDoesNotTunnelThroughAThinPlate) {
+  const SceneRun run = SimulateOk(
+      Sphere(0.1) +
+      "shape_set plate -desc {-sub {-box {4 0.01 4}}}\n"
+      "body s -shape ball -mass 1 -init_pos {0 5 0} -init_dpos {0 -1000 0}\n"
+      "body p -shape plate -static 1 -init_pos {0 0 0}\n"
+      "simulator -finish 0.01\n",
+      1e-6, 1e-9);
+  ASSERT_EQ(run.collisions->impacts().size(), 1u);
+  EXPECT_GT(Position(run, "s", 0.01).y(), 0.0);
+  EXPECT_NEAR(Velocity(run, "s", 0.01).y(), 1000.0, 1e-6);
+}
+
+TEST(Collision, ASpinningBoxReachesAWallAtThePredictedTime) {
+  // Box 1×0.5×0.5 spinning at 3 rad/s about z, moving at +1 along x, no
+  // forces; wall face at x = 4.  Its pose is known in closed form, so the
+  // first contact time is found here by bisection on the leading corner.
+  const double w = 3.0, wall = 4.0;
+  const SceneRun run = SimulateOk(
+      "shape_set box -desc {-sub {-box {1 0.5 0.5}}}\n"
+      "shape_set wall -desc {-sub {-box {1 10 10}}}\n"
+      "body b -shape box -mass 1 -init_dpos {1 0 0} -init_drot {0 0 3}\n"
+      "body w -shape wall -static 1 -init_pos {4.5 0 0}\n"
+      "simulator -finish 4\n",
+      1e-11, 1e-13);
+  auto lead = [&](double t) {  // largest x of the box's corners minus the wall
+    double m = -1e9;
+    for (double sx : {-0.5, 0.5})
+      for (double sy : {-0.25, 0.25}) {
+        const double x = t + std::cos(w * t) * sx - std::sin(w * t) * sy;
+        m = std::max(m, x);
+      }
+    return m - wall;
+  };
+  double lo = 0, hi = 4;
+  for (double t = 0; t < 4; t += 1e-3)
+    if (lead(t) >= 0) {
+      hi = t;
+      lo = t - 1e-3;
+      break;
+    }
+  for (int i = 0; i < 100; ++i) (lead(0.5 * (lo + hi)) < 0 ? lo : hi) = 0.5 * (lo + hi);
+  ASSERT_GE(run.collisions->impacts().size(), 1u);
+  EXPECT_NEAR(run.collisions->impacts()[0].t, lo, 1e-6);
+}
+
+TEST(Collision, AnElasticBallBouncingUnderGravityReturnsToItsHeight) {
+  const double h0 = 1.0, g = 9.81, r = 0.1;
+  const double period = 2 * std::sqrt(2 * h0 / g);
+  const SceneRun run = SimulateOk(
+      Sphere(r) +
+      "shape_set floor -desc {-sub {-box {10 1 10}}}\n"
+      "body ball -shape ball -mass 1 -init_pos {0 " + std::to_string(h0 + r) + " 0}\n"
+      "body floor -shape floor -static 1 -init_pos {0 -0.5 0}\n"
+      "force -body ball -x 0 -y -9.81 -z 0 -gravitational 1\n"
+      "simulator -finish " + std::to_string(10.25 * period) + "\n",
+      1e-10, 1e-12);
+  ASSERT_EQ(run.collisions->impacts().size(), 10u);
+  // Top of the 10th bounce.
+  EXPECT_NEAR(Position(run, "ball", 10 * period).y(), h0 + r, 1e-6);
+  for (size_t i = 0; i < 10; ++i)
+    EXPECT_NEAR(run.collisions->impacts()[i].t, (i + 0.5) * period, 1e-6) << "bounce " << i;
+}
+
+TEST(Collision, AnInelasticBallComesToRestNearTheAnalyticTimeWithBoundedEvents) {
+  const double h0 = 1.0, g = 9.81, r = 0.1, e = 0.5;
+  const double t1 = std::sqrt(2 * h0 / g), v1 = g * t1;
+  // Bounce k lasts 2 e^k v1 / g: the bounces end at t1 + 2 e v1 / (g (1 − e)).
+  const double t_rest = t1 + 2 * e * v1 / (g * (1 - e));
+  const SceneRun run = SimulateOk(
+      Sphere(r) +
+      "shape_set floor -desc {-sub {-box {10 1 10}}}\n"
+      "body ball -shape ball -mass 1 -restitution 0.5 -init_pos {0 " + std::to_string(h0 + r) +
+      " 0}\n"
+      "body floor -shape floor -static 1 -init_pos {0 -0.5 0}\n"
+      "force -body ball -x 0 -y -9.81 -z 0 -gravitational 1\n"
+      "simulator -finish " + std::to_string(t_rest + 1) + "\n",
+      1e-9, 1e-12);
+  const auto& impacts = run.collisions->impacts();
+  ASSERT_GE(impacts.size(), 5u);
+  EXPECT_LE(impacts.size(), 40u);
+  // It rests once a rebound would rise less than 1e-6 r, i.e. leave at under
+  // √(2 g 1e-7): the flights left out then add up to < 6e-4.
+  EXPECT_NEAR(impacts.back().t, t_rest, 1e-3);
+  EXPECT_NEAR(Position(run, "ball", t_rest + 1).y(), r, 1e-6);
+  EXPECT_EQ(Velocity(run, "ball", t_rest + 1).y(), 0.0);
+}
+
+TEST(Collision, DirectlyLinkedPartsOfOneArticulatedBodyDoNotCollide) {
+  // Three boxes of one artbody in a chain a–b–c, overlapping at the joints.
+  const std::string base =
+      "shape_set rod -desc {-sub {-box {2 0.2 0.2}}}\n"
+      "body a -shape rod -artbody arm -init_pos {0 0 0}\n"
+      "body b -shape rod -artbody arm -init_pos {1.9 0 0}\n"
+      "body c -shape rod -artbody arm -init_pos {3.8 0 0}\n"
+      "link -body1 a -offset1 {0.95 0 0} -body2 b -offset2 {-0.95 0 0} -tightness 100\n"
+      "link -body1 b -offset1 {0.95 0 0} -body2 c -offset2 {-0.95 0 0} -tightness 100\n"
+      "simulator -finish 0.1\n";
+  const SceneRun run = SimulateOk(base);
+  EXPECT_FALSE(run.collisions->Tested(0, 1));
+  EXPECT_FALSE(run.collisions->Tested(1, 2));
+  EXPECT_TRUE(run.collisions->Tested(0, 2));  // non-adjacent parts still collide
+  EXPECT_TRUE(run.collisions->impacts().empty());
+  EXPECT_TRUE(run.collisions->warnings().empty());
+}
+
+std::string ReadSample(const std::string& name) {
+  std::ifstream in(std::string(ASGARD_SOURCE_DIR) + "/samples/" + name);
+  std::stringstream ss;
+  ss << in.rdbuf();
+  return ss.str();
+}
+
+TEST(Collision, TheSeedPendulumHitsTheBallWhichFliesOffToTheRight) {
+  const SceneRun run = SimulateOk(ReadSample("pendulum.al"), 1e-6, 1e-9);
+  ASSERT_GE(run.collisions->impacts().size(), 1u);
+  const auto& first = run.collisions->impacts()[0];
+  const auto& eq = *run.equations;
+  EXPECT_EQ(eq.bodies[first.b].name, "b3");
+  EXPECT_EQ(eq.bodies[first.a].name, "b2");  // the lower rod
+  EXPECT_GT(Velocity(run, "b3", 5).x(), 0.0);  // thrown at −3, leaves to the right
+}
+
+TEST(Collision, TruncationAfterAnImpactReproducesTheRunBitForBit) {
+  const std::string text = Sphere(0.5) +
+                           "body a -shape ball -mass 1 -init_pos {0 0 0} -init_dpos {2 0 0}\n"
+                           "body b -shape ball -mass 3 -init_pos {3 0 0}\n"
+                           "body idle -shape ball -init_pos {0 10 0} -init_drot {0 0 1}\n"
+                           "force -body a -x 0 -y {-1 * a.mass} -z 0\n"
+                           "simulator -finish 3\n";
+  const SceneRun reference = SimulateOk(text);
+  SceneRun run = SimulateOk(text);
+  auto& sim = *run.simulation;
+  const long idle_steps = sim.component(sim.component_of(
+      run.equations->bodies[run.equations->FindBody("idle")].first_var + physics::kQw))
+      .counters().truncated_steps;
+  for (int c = 0; c < sim.component_count(); ++c) sim.Truncate(c, 0.1);
+  ASSERT_TRUE(sim.Run()) << sim.error();
+  ASSERT_EQ(run.collisions->impacts().size(), reference.collisions->impacts().size());
+  EXPECT_EQ(run.collisions->impacts()[0].t, reference.collisions->impacts()[0].t);
+  for (double t = 0; t <= 3; t += 0.01) {
+    EXPECT_EQ(Position(run, "a", t), Position(reference, "a", t)) << t;
+    EXPECT_EQ(Velocity(run, "b", t), Velocity(reference, "b", t)) << t;
+  }
+  EXPECT_EQ(idle_steps, 0);  // the impact never rolled back the idle body
+}
+
+}  // namespace
+}  // namespace asgard
