@@ -17,7 +17,7 @@ packages=(
   libcairo2-dev libpango1.0-dev libosmesa6-dev libpng-dev libxml2-dev ffmpeg
   # tests and benchmarks
   libgtest-dev libgmock-dev libbenchmark-dev
-  ghostscript poppler-utils povray
+  ghostscript poppler-utils povray chromium
 )
 
 missing=()
