@@ -646,8 +646,10 @@ void CollisionMonitor::AfterTruncate() {
         if (imp.t > limit && (imp.a == b || imp.b == b)) {
           impacts_.erase(impacts_.begin() + static_cast<long>(i));
           ++counters_.invalidated_impacts;
-          const int partner = imp.a == b ? imp.b : imp.a;
-          for (int c : bodies_[partner].components) sim_.Truncate(c, imp.t, /*strict=*/true);
+          // Both bodies' jumps at the impact are void; the partner's data
+          // after it must be recomputed.
+          for (int body : {imp.a, imp.b})
+            for (int c : bodies_[body].components) sim_.Truncate(c, imp.t, /*strict=*/true);
           continue;
         }
         ++i;

@@ -510,28 +510,18 @@ double Component::Truncate(double t, bool strict) {
   return wave_.t_end();
 }
 
-void Component::AddBreakpoint(double t) {
-  auto it = std::lower_bound(dynamic_breakpoints_.begin(), dynamic_breakpoints_.end(), t);
-  if (it == dynamic_breakpoints_.end() || *it != t) dynamic_breakpoints_.insert(it, t);
-}
-
 void Component::AddJump(double t, int local, double value) {
-  AddBreakpoint(t);
   jumps_.push_back({t, local, value});
 }
 
 void Component::AddHold(double t, int local, double value) {
-  AddBreakpoint(t);
   holds_.push_back({t, std::numeric_limits<double>::infinity(), local, value});
   last_mode_ = nullptr;
 }
 
 void Component::ReleaseHold(double t, int local) {
   for (Hold& h : holds_)
-    if (h.local == local && h.from < t && t < h.to) {
-      h.to = t;
-      AddBreakpoint(t);
-    }
+    if (h.local == local && h.from < t && t < h.to) h.to = t;
   last_mode_ = nullptr;
 }
 
@@ -541,13 +531,31 @@ bool Component::Held(int local, double t) const {
   return false;
 }
 
-void Component::ForgetAfter(double t) {
-  std::erase_if(dynamic_breakpoints_, [t](double b) { return b > t; });
-  std::erase_if(jumps_, [t](const Jump& j) { return j.t > t; });
-  std::erase_if(holds_, [t](const Hold& h) { return h.from > t; });
+void Component::ForgetAfter(double t, bool strict) {
+  auto after = [t, strict](double x) { return strict ? x >= t : x > t; };
+  std::erase_if(jumps_, [&](const Jump& j) { return after(j.t); });
+  std::erase_if(holds_, [&](const Hold& h) { return after(h.from); });
   for (Hold& h : holds_)
-    if (h.to > t) h.to = std::numeric_limits<double>::infinity();
+    if (after(h.to)) h.to = std::numeric_limits<double>::infinity();
   last_mode_ = nullptr;
+}
+
+std::vector<double> Component::EventTimes() const {
+  std::vector<double> times;
+  for (const Jump& j : jumps_) times.push_back(j.t);
+  for (const Hold& h : holds_) {
+    times.push_back(h.from);
+    if (std::isfinite(h.to)) times.push_back(h.to);
+  }
+  return times;
+}
+
+void Component::SetDynamicBreakpoints(const std::vector<double>& upstream) {
+  dynamic_breakpoints_ = EventTimes();
+  dynamic_breakpoints_.insert(dynamic_breakpoints_.end(), upstream.begin(), upstream.end());
+  std::sort(dynamic_breakpoints_.begin(), dynamic_breakpoints_.end());
+  dynamic_breakpoints_.erase(std::unique(dynamic_breakpoints_.begin(), dynamic_breakpoints_.end()),
+                             dynamic_breakpoints_.end());
 }
 
 std::string Component::Describe() const {

@@ -110,17 +110,25 @@ class Component {
   // Keeps samples up to `t` (see Waveform::KeepIndex), or with `strict` only
   // those before t; returns the time of the last sample kept.
   double Truncate(double t, bool strict = false);
-  // Breakpoints added while simulating (collisions, upstream jumps).  A jump
-  // sets local variable `local` to `value` at t (right limit).
-  void AddBreakpoint(double t);
+  // Events added while simulating (collisions).  A jump sets local variable
+  // `local` to `value` at t (right limit).  The component owns its events;
+  // its dynamic breakpoints are their times plus those of every component
+  // upstream (SetInheritedBreakpoints), since an upstream jump makes its
+  // rates jump.
   void AddJump(double t, int local, double value);
   // Holds local variable `local` at `value` (rate 0) from t on — a dynamic
   // override of its equation, used for resting contact — until released.
   void AddHold(double t, int local, double value);
   void ReleaseHold(double t, int local);
   bool Held(int local, double t) const;
-  // Drops dynamic breakpoints, jumps and holds after t.
-  void ForgetAfter(double t);
+  // Drops the events after t (with `strict`, at or after t): jumps, holds
+  // starting then, and releases then.
+  void ForgetAfter(double t, bool strict);
+  // Times of this component's own events.
+  std::vector<double> EventTimes() const;
+  // Own event times ∪ `upstream` (sorted, unique) become the dynamic breakpoints.
+  void SetDynamicBreakpoints(const std::vector<double>& upstream);
+  const std::vector<double>& dynamic_breakpoints() const { return dynamic_breakpoints_; }
 
  private:
   struct Mode;

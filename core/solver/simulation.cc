@@ -148,56 +148,60 @@ void Simulation::Truncate(int c, double t, bool strict) {
   for (size_t k = static_cast<size_t>(c); k < n; ++k) {
     if (cut[k] == std::numeric_limits<double>::infinity()) continue;
     const double kept = components_[k]->Truncate(cut[k], strict && k == static_cast<size_t>(c));
-    components_[k]->ForgetAfter(kept);
+    // Events after the requested time are void; earlier ones stand (a
+    // component cut back further than t only recomputes up to them).
+    components_[k]->ForgetAfter(t, strict);
     affected.push_back(static_cast<int>(k));
     if (on_truncate) on_truncate(*this, static_cast<int>(k), kept);
     for (int d : partition_.downstream[k]) cut[d] = std::min(cut[d], kept);
   }
+  RebuildBreakpoints(c);
   RepairQueue(affected);
   if (--truncate_depth_ == 0 && after_truncate) after_truncate(*this);
 }
 
-void Simulation::PrepareDiscontinuity(int var, double t) {
-  const int c = partition_.component_of[var];
-  Truncate(c, t);
-  // Readers must land on t too: their rates jump there.
-  std::vector<int> stack{c};
-  std::vector<char> seen(components_.size(), 0);
-  while (!stack.empty()) {
-    const int k = stack.back();
-    stack.pop_back();
-    for (int d : partition_.downstream[k]) {
-      if (seen[d]) continue;
-      seen[d] = 1;
-      components_[d]->AddBreakpoint(t);
-      stack.push_back(d);
+void Simulation::RebuildBreakpoints(int c) {
+  // Dependency order: upstream components are final when a reader is rebuilt.
+  std::vector<char> dirty(components_.size(), 0);
+  dirty[c] = 1;
+  for (size_t k = static_cast<size_t>(c); k < components_.size(); ++k) {
+    if (!dirty[k]) continue;
+    std::vector<double> inherited;
+    for (int u : partition_.upstream[k]) {
+      const auto& b = components_[u]->dynamic_breakpoints();
+      inherited.insert(inherited.end(), b.begin(), b.end());
     }
+    components_[k]->SetDynamicBreakpoints(inherited);
+    for (int d : partition_.downstream[k]) dirty[d] = 1;
   }
 }
 
 void Simulation::SetValueAt(int var, double t, double value) {
   ++truncate_depth_;
-  PrepareDiscontinuity(var, t);
   const int c = partition_.component_of[var];
+  Truncate(c, t);
   components_[c]->AddJump(t, local_index_[var], value);
+  RebuildBreakpoints(c);
   RepairQueue({c});
   if (--truncate_depth_ == 0 && after_truncate) after_truncate(*this);
 }
 
 void Simulation::HoldAt(int var, double t, double value) {
   ++truncate_depth_;
-  PrepareDiscontinuity(var, t);
   const int c = partition_.component_of[var];
+  Truncate(c, t);
   components_[c]->AddHold(t, local_index_[var], value);
+  RebuildBreakpoints(c);
   RepairQueue({c});
   if (--truncate_depth_ == 0 && after_truncate) after_truncate(*this);
 }
 
 void Simulation::ReleaseAt(int var, double t) {
   ++truncate_depth_;
-  PrepareDiscontinuity(var, t);
   const int c = partition_.component_of[var];
+  Truncate(c, t);
   components_[c]->ReleaseHold(t, local_index_[var]);
+  RebuildBreakpoints(c);
   RepairQueue({c});
   if (--truncate_depth_ == 0 && after_truncate) after_truncate(*this);
 }

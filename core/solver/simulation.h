@@ -100,8 +100,8 @@ class Simulation {
   bool Eligible(int c) const;
   void Push(int c);
   void RepairQueue(const std::vector<int>& affected);
-  // Truncates var's component to t and makes every reader land on t.
-  void PrepareDiscontinuity(int var, double t);
+  // Recomputes the dynamic breakpoints of c and of everything downstream.
+  void RebuildBreakpoints(int c);
 
   const physics::EquationSystem& sys_;
   SolverOptions options_;

@@ -279,6 +279,28 @@ TEST(Collision, TheSeedPendulumHitsTheBallWhichFliesOffToTheRight) {
   EXPECT_GT(Velocity(run, "b3", 5).x(), 0.0);  // thrown at −3, leaves to the right
 }
 
+TEST(Collision, TheSeedFigure511SceneHasExactlyItsImpactsAndIdleBodiesAreNeverRolledBack) {
+  const SceneRun run = SimulateOk(testing::SeedFigure511(20), 1e-6, 1e-9);
+  const auto& eq = *run.equations;
+  const auto& impacts = run.collisions->impacts();
+  std::vector<std::string> seen;
+  for (const auto& imp : impacts) seen.push_back(eq.bodies[imp.a].name + "-" + eq.bodies[imp.b].name);
+  const std::vector<std::string> expected = {"right-ball", "right-ball", "left-ball"};
+  EXPECT_EQ(seen, expected);
+  ASSERT_EQ(impacts.size(), 3u);
+  EXPECT_NEAR(impacts[0].t, 1.0, 1e-3);
+  for (size_t b = 0; b < eq.bodies.size(); ++b) {
+    if (eq.bodies[b].name.rfind("idle", 0) != 0) continue;
+    for (int slot = 0; slot < physics::kBodySlots; ++slot) {
+      const auto& comp =
+          run.simulation->component(run.simulation->component_of(eq.bodies[b].first_var + slot));
+      EXPECT_EQ(comp.counters().truncated_steps, 0) << eq.bodies[b].name;
+    }
+  }
+  // Something was rolled back: the pendulums' and the ball's components.
+  EXPECT_GT(run.simulation->totals().truncated_steps, 0);
+}
+
 TEST(Collision, TruncationAfterAnImpactReproducesTheRunBitForBit) {
   const std::string text = Sphere(0.5) +
                            "body a -shape ball -mass 1 -init_pos {0 0 0} -init_dpos {2 0 0}\n"

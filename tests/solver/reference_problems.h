@@ -84,4 +84,29 @@ inline double TopPeriod(double I1, double I2, double I3, double w1, double w2, d
   return 4.0 * std::comp_ellint_1(std::sqrt(k2)) / lambda;
 }
 
+// The scene of seed 5.2.4 / Figure 5.11: two pendulums (balls of mass 1 on
+// stiff ball joints 3 below their pivots at x = ±3) and a free ball of mass 1
+// between them, thrown at the right one at speed 2, no gravity on it.  Equal
+// masses swap velocities: the ball stops at the right bob (t ≈ 1), the bob
+// swings out and back and sends the ball left (t ≈ 2.75), the ball stops at
+// the left bob (t ≈ 4.75).  So by t = 5.5 the ball has hit the right
+// pendulum twice and the left one once.  `idle` more balls rest far away
+// (z = 10, spaced 2 apart along x): they never take part.
+inline std::string SeedFigure511(int idle, double finish = 5.5) {
+  std::string s = kBallShape;
+  for (const char* side : {"left", "right"}) {
+    const double x = side[0] == 'l' ? -3.0 : 3.0;
+    s += std::string("body ") + side + " -shape ball -mass 1 -init_pos {" + std::to_string(x) +
+         " 0 0}\n" + "link -body1 " + side + " -offset1 {0 3 0} -x " + std::to_string(x) +
+         " -y 3 -z 0 -tightness 1e5\n" + "force -body " + side +
+         " -x 0 -y -9.81 -z 0 -gravitational 1\n";
+  }
+  s += "body ball -shape ball -mass 1 -init_pos {0 0 0} -init_dpos {2 0 0}\n";
+  for (int i = 0; i < idle; ++i)
+    s += "body idle" + std::to_string(i) + " -shape ball -init_pos {" + std::to_string(2.0 * i) +
+         " 0 10}\n";
+  s += "simulator -finish " + std::to_string(finish) + "\n";
+  return s;
+}
+
 }  // namespace asgard::testing
