@@ -234,12 +234,47 @@ Bound SceneSampler::SceneBound() const {
     Eigen::Vector3d c;
     double r;
   };
-  std::vector<Ball> balls;
-  for (double t : FrameTimes()) {
+  // Frame the scene as it starts, then widen to take in each body's motion
+  // until it first strays beyond twice that framing radius: a ball launched
+  // far away leaves the picture instead of shrinking everything else to a
+  // speck.  A scene of one body keeps its whole path in view.
+  auto fit = [](const std::vector<Ball>& balls) {
+    Bound bound;
+    Eigen::Vector3d lo = Eigen::Vector3d::Constant(1e300), hi = -lo;
+    for (const auto& s : balls) {
+      lo = lo.cwiseMin((s.c.array() - s.r).matrix());
+      hi = hi.cwiseMax((s.c.array() + s.r).matrix());
+    }
+    bound.center = (lo + hi) / 2;
+    bound.radius = 0;
+    for (const auto& s : balls)
+      bound.radius = std::max(bound.radius, (s.c - bound.center).norm() + s.r);
+    return bound;
+  };
+  const std::vector<double> times = FrameTimes();
+  std::vector<std::vector<Ball>> path(bodies_.size());
+  for (double t : times) {
     const auto poses = Poses(t);
     for (size_t b = 0; b < bodies_.size(); ++b)
       if (!bodies_[b].pieces.empty())
-        balls.push_back({poses[b].Apply(bodies_[b].bound_center), bodies_[b].bound_radius});
+        path[b].push_back({poses[b].Apply(bodies_[b].bound_center), bodies_[b].bound_radius});
+  }
+  std::vector<Ball> balls;
+  size_t moving = 0;
+  for (const auto& p : path)
+    if (!p.empty()) {
+      balls.push_back(p.front());
+      ++moving;
+    }
+  if (!balls.empty() && moving > 1) {
+    const Bound start = fit(balls);
+    for (const auto& p : path)
+      for (const Ball& s : p) {
+        if ((s.c - start.center).norm() + s.r > 2 * start.radius) break;
+        balls.push_back(s);
+      }
+  } else {
+    for (const auto& p : path) balls.insert(balls.end(), p.begin(), p.end());
   }
   Bound bound;
   if (!balls.empty()) {

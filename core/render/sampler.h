@@ -83,8 +83,9 @@ class SceneSampler {
   // `count` frames evenly spaced over [start, end] (count 1: start).
   static std::vector<double> FrameTimes(double start, double end, int count);
 
-  // Smallest-box-centred sphere holding every body's bounding sphere at every
-  // frame time.
+  // Sphere (centred on the smallest box) holding every body's bounding sphere
+  // at the start, and along its path until it first strays beyond twice that
+  // radius (all of the path when the scene has one body).
   Bound SceneBound() const;
   // The framing view (DefaultTilt, centre and radius of SceneBound), with the
   // options of the scene's last `view` element (or the one named `name`)
