@@ -119,7 +119,9 @@ TEST(Sampler, PendulumPosesFramesAndOverlays) {
       const double reach =
           (ps[i].Apply(s.bodies()[i].bound_center) - b.center).norm() + s.bodies()[i].bound_radius;
       if (reach > b.radius + 1e-9) strayed[i] = true;
-      if (i < 2) EXPECT_LE(reach, b.radius + 1e-9) << "rod " << i << " at t=" << t;
+      if (i < 2) {
+        EXPECT_LE(reach, b.radius + 1e-9) << "rod " << i << " at t=" << t;
+      }
     }
   }
   EXPECT_TRUE(strayed[2]);
