@@ -21,6 +21,7 @@
 #include "core/app/commands.h"
 #include "core/app/pipeline.h"
 #include "core/lang/lang.h"
+#include "core/session/session.h"
 
 namespace {
 
@@ -31,6 +32,7 @@ constexpr const char* kMainHelp = R"(asgard — physically-based 3D animation: s
 Usage:
   asgard check FILE            check a scene for errors
   asgard simulate FILE [...]   simulate a scene and write its trajectories
+  asgard edit FILE --set ...   change parameters as a graphical editor would
   asgard render FILE [...]     draw frames, pictures and movies of a scene
   asgard export FILE [...]     write the scene for other programs (POV-Ray, glTF, ...)
   asgard help [COMMAND]        show help (also: asgard COMMAND --help)
@@ -43,6 +45,27 @@ constexpr const char* kCheckHelp = R"(Usage: asgard check FILE
 Evaluates the scene script FILE and forms its equations without simulating.
 Each problem is printed as FILE:LINE:COL: error: message.
 Exit status 0 when the scene has no errors, 1 otherwise.
+)";
+
+constexpr const char* kEditHelp = R"(Usage: asgard edit FILE --set ELEMENT.PARAM=VALUE ... [-o OUT]
+
+Applies edits the way the graphical viewer does: each changes only the
+literal numbers of the parameter in the text (comments and formatting stay),
+or appends the option to its command when it is not written yet.
+
+  ELEMENT   a name (b1, tr1) or kind#index for unnamed elements (force#0,
+            link#1, lightsource#0, view#0), or simulator
+  PARAM     an option without the dash: init_pos init_rot init_dpos init_drot
+            mass offset offset1 offset2 pos dir points finish ...; for forces,
+            torques and links "vector" sets -x -y -z together
+  VALUE     numbers separated by spaces or commas
+
+  -o OUT    write the edited scene to OUT (default: standard output)
+  --list    list every parameter, whether it is editable, and why not
+
+Exit status 0 on success, 1 when a parameter is read-only (the reason is
+printed: made in a loop, computed by an expression, ...) or unknown, 2 on bad
+usage.
 )";
 
 constexpr const char* kSimulateHelp = R"(Usage: asgard simulate FILE [options]
@@ -240,6 +263,89 @@ void PrintStats(const asgard::app::Run& run) {
   }
 }
 
+int Edit(const std::vector<std::string>& args) {
+  std::string file, out_path;
+  bool list = false;
+  std::vector<std::string> sets;
+  for (size_t i = 0; i < args.size(); ++i) {
+    const std::string& a = args[i];
+    if (a == "-h" || a == "--help") {
+      std::cout << kEditHelp;
+      return 0;
+    } else if (a == "--set") {
+      if (i + 1 >= args.size()) return Usage("--set needs ELEMENT.PARAM=VALUE", kEditHelp);
+      sets.push_back(args[++i]);
+    } else if (a == "-o") {
+      if (i + 1 >= args.size()) return Usage("-o needs a file name", kEditHelp);
+      out_path = args[++i];
+    } else if (a == "--list") {
+      list = true;
+    } else if (!a.empty() && a[0] == '-') {
+      return Usage("edit: unknown option '" + a + "'", kEditHelp);
+    } else if (!file.empty()) {
+      return Usage("edit: only one FILE is accepted", kEditHelp);
+    } else {
+      file = a;
+    }
+  }
+  if (file.empty()) return Usage("edit: FILE is required", kEditHelp);
+  if (sets.empty() && !list) return Usage("edit: nothing to do (give --set or --list)", kEditHelp);
+  std::string text;
+  if (!ReadFile(file, text)) {
+    std::cerr << "asgard: cannot read '" << file << "'\n";
+    return 1;
+  }
+  asgard::session::Session session(text);
+  if (list) {
+    for (const auto& p : session.Parameters())
+      std::cout << p.element << "." << p.param << " = {" << p.value << "}  "
+                << (p.editable ? "editable" : "read-only: " + p.reason) << "\n";
+    if (sets.empty()) return 0;
+  }
+  for (const auto& s : sets) {
+    const size_t eq = s.find('='), dot = s.rfind('.', eq);
+    if (eq == std::string::npos || dot == std::string::npos || dot == 0)
+      return Usage("--set expects ELEMENT.PARAM=VALUE, got '" + s + "'", kEditHelp);
+    std::vector<double> values;
+    std::string v = s.substr(eq + 1);
+    std::replace(v.begin(), v.end(), ',', ' ');
+    std::istringstream in(v);
+    std::string tok;
+    while (in >> tok) {
+      double d;
+      if (!ParseDouble(tok, d)) return Usage("'" + tok + "' is not a number in '" + s + "'", kEditHelp);
+      values.push_back(d);
+    }
+    if (values.empty()) return Usage("no value in '" + s + "'", kEditHelp);
+    const auto r = session.SetParameter(s.substr(0, dot), s.substr(dot + 1, eq - dot - 1), values);
+    if (!r.ok) {
+      std::cerr << "asgard: " << file << ": " << r.error << "\n";
+      return 1;
+    }
+  }
+  if (out_path.empty()) {
+    std::cout << session.text();
+    return 0;
+  }
+  // Write beside the target and rename, so a failure never leaves half a file.
+  const std::string tmp = out_path + ".tmp";
+  {
+    std::ofstream out(tmp, std::ios::binary);
+    out << session.text();
+    if (!out) {
+      std::cerr << "asgard: cannot write '" << out_path << "'\n";
+      std::remove(tmp.c_str());
+      return 1;
+    }
+  }
+  if (std::rename(tmp.c_str(), out_path.c_str()) != 0) {
+    std::cerr << "asgard: cannot write '" << out_path << "'\n";
+    std::remove(tmp.c_str());
+    return 1;
+  }
+  return 0;
+}
+
 int Check(const std::vector<std::string>& args) {
   std::string file;
   for (const auto& a : args) {
@@ -392,6 +498,7 @@ int main(int argc, char** argv) {
   if (cmd == "-h" || cmd == "--help" || cmd == "help") {
     if (!args.empty() && args[0] == "check") std::cout << kCheckHelp;
     else if (!args.empty() && args[0] == "simulate") std::cout << kSimulateHelp;
+    else if (!args.empty() && args[0] == "edit") std::cout << kEditHelp;
     else if (!args.empty() && args[0] == "render") std::cout << asgard::app::kRenderHelp;
     else if (!args.empty() && args[0] == "export") std::cout << asgard::app::kExportHelp;
     else std::cout << kMainHelp;
@@ -399,6 +506,7 @@ int main(int argc, char** argv) {
   }
   if (cmd == "check") return Check(args);
   if (cmd == "simulate") return Simulate(args);
+  if (cmd == "edit") return Edit(args);
   if (cmd == "render") return asgard::app::RenderCommand(args);
   if (cmd == "export") return asgard::app::ExportCommand(args);
   return Usage("unknown command '" + cmd + "'", kMainHelp);

@@ -34,6 +34,7 @@ struct RunOptions {
   std::optional<double> until;  // overrides the simulator's -finish
   bool use_scene_tolerances = true;  // simulator -rtol/-atol/-step/-maxstep
   std::optional<bool> collisions;    // overrides simulator -collisions
+  bool allow_scene_errors = false;   // simulate the valid part of a scene with errors
   std::function<void(double)> progress;
 };
 

@@ -162,12 +162,7 @@ class Builder {
         }
         m.pieces.push_back(std::move(piece));
       }
-      m.q0 = Eigen::Quaterniond(b.init_rot[0], b.init_rot[1], b.init_rot[2], b.init_rot[3])
-                 .normalized();
-      const Eigen::Matrix3d R0 = m.q0.toRotationMatrix();
-      m.x0 = ToEigen(b.init_pos) + R0 * m.centroid;
-      m.v0 = ToEigen(b.init_dpos);
-      m.w0_body = R0.transpose() * ToEigen(b.init_drot);
+      SetInitialState(m, b);
       sys_.bodies.push_back(std::move(m));
     }
   }
@@ -177,10 +172,7 @@ class Builder {
       BodyModel& m = sys_.bodies[b];
       if (m.is_static) continue;
       m.first_var = static_cast<int>(sys_.variables.size());
-      const double init[kBodySlots] = {m.x0.x(),      m.x0.y(),      m.x0.z(),      m.v0.x(),
-                                       m.v0.y(),      m.v0.z(),      m.q0.w(),      m.q0.x(),
-                                       m.q0.y(),      m.q0.z(),      m.w0_body.x(), m.w0_body.y(),
-                                       m.w0_body.z()};
+      const auto init = InitialValues(m);
       for (int s = 0; s < kBodySlots; ++s) {
         StateVariable v;
         v.name = m.name + "." + kSlotNames[s];
@@ -690,6 +682,19 @@ class Builder {
 };
 
 }  // namespace
+
+void SetInitialState(BodyModel& m, const scene::Body& b) {
+  m.q0 = Eigen::Quaterniond(b.init_rot[0], b.init_rot[1], b.init_rot[2], b.init_rot[3]).normalized();
+  const Eigen::Matrix3d R0 = m.q0.toRotationMatrix();
+  m.x0 = ToEigen(b.init_pos) + R0 * m.centroid;
+  m.v0 = ToEigen(b.init_dpos);
+  m.w0_body = R0.transpose() * ToEigen(b.init_drot);
+}
+
+std::array<double, kBodySlots> InitialValues(const BodyModel& m) {
+  return {m.x0.x(), m.x0.y(), m.x0.z(), m.v0.x(), m.v0.y(), m.v0.z(), m.q0.w(),
+          m.q0.x(), m.q0.y(), m.q0.z(), m.w0_body.x(), m.w0_body.y(), m.w0_body.z()};
+}
 
 expr::ExternFn EquationSystem::externs() const {
   auto curves_copy = curves;

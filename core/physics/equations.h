@@ -118,6 +118,12 @@ struct EquationSystem {
   int FindBody(const std::string& name) const;
 };
 
+// A body's initial state from its element (-init_pos is where the shape's
+// origin goes; the state tracks the centre of mass), into m.x0 q0 v0 w0_body,
+// and the 13 initial values of its state variables in BodySlot order.
+void SetInitialState(BodyModel& m, const scene::Body& b);
+std::array<double, kBodySlots> InitialValues(const BodyModel& m);
+
 // Forms the equations of `scene`.  Problems (bad expressions, unknown names,
 // degenerate hulls) become diagnostics located at the offending element, and
 // that element is left out; never throws.

@@ -385,8 +385,11 @@ bool CollisionMonitor::CheckEpoch() {
   for (auto [a, b] : pairs) {
     if (!Tested(a, b)) continue;
     double start = e0;
+    // Only impacts inside this window count: after a rollback, later
+    // impacts of other pairs may still be on record.
     for (auto it = impacts_.rbegin(); it != impacts_.rend() && it->t >= e0; ++it)
-      if (it->a == a || it->b == a || it->a == b || it->b == b) start = std::max(start, it->t);
+      if (it->t < e1 && (it->a == a || it->b == a || it->a == b || it->b == b))
+        start = std::max(start, it->t);
     if (start >= e1) continue;
     auto impact = FirstImpact(a, b, start, e1);
     if (impact && (!best || impact->t < best->t)) best = impact;

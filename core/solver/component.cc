@@ -98,18 +98,27 @@ void Component::Initialize() {
   static_breakpoints_.erase(std::unique(static_breakpoints_.begin(), static_breakpoints_.end()),
                             static_breakpoints_.end());
 
+  StartSample();
+}
+
+// The first sample: the variables' initial values (or what a trajectory
+// prescribes at t0) with right-hand-limit rates, as a restart.
+void Component::StartSample() {
   const size_t n = vars_.size();
   for (size_t j = 0; j < n; ++j) x_[j] = sys_.variables[vars_[j]].initial;
   std::vector<double> zero(n, 0.0);
+  wave_.Resize(0);
   wave_.Append(sys_.t0, x_.data(), zero.data(), {0.0, false});
+  const long restarts = counters_.restarts;
   Restart();
+  counters_.restarts = restarts;
   // The restart sample replaces the provisional one.
   const int last = wave_.size() - 1;
   std::vector<double> x(wave_.x(last), wave_.x(last) + n), f(wave_.f(last), wave_.f(last) + n);
   const SampleInfo info = wave_.info(last);
   wave_.Resize(0);
   wave_.Append(sys_.t0, x.data(), f.data(), info);
-  counters_.restarts = 0;
+  jac_sample_ = -1;
 }
 
 // ---- modes -----------------------------------------------------------------

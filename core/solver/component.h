@@ -100,6 +100,9 @@ class Component {
   // Sets up inputs and breakpoints; requires every upstream component's
   // initial sample (call in dependency order).
   void Initialize();
+  // Rebuilds the first sample from the (possibly changed) initial values of
+  // the variables and the inputs' first samples; drops everything after it.
+  void StartSample();
   // End time of the next step (after clipping to breakpoints and the end).
   double NextEnd() const;
   // Takes one accepted step (restarting first at a pending breakpoint).

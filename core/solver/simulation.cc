@@ -160,6 +160,25 @@ void Simulation::Truncate(int c, double t, bool strict) {
   if (--truncate_depth_ == 0 && after_truncate) after_truncate(*this);
 }
 
+void Simulation::ResetToStart(int c) {
+  ++truncate_depth_;
+  Truncate(c, sys_.t0);
+  // Every component Truncate reached now holds only its first sample; rebuild
+  // those in dependency order so readers see their inputs' new start.
+  std::vector<char> reached(components_.size(), 0);
+  reached[c] = 1;
+  for (size_t k = static_cast<size_t>(c); k < components_.size(); ++k) {
+    if (!reached[k]) continue;
+    components_[k]->StartSample();
+    for (int d : partition_.downstream[k]) reached[d] = 1;
+  }
+  std::vector<int> affected;
+  for (size_t k = 0; k < components_.size(); ++k)
+    if (reached[k]) affected.push_back(static_cast<int>(k));
+  RepairQueue(affected);
+  if (--truncate_depth_ == 0 && after_truncate) after_truncate(*this);
+}
+
 void Simulation::RebuildBreakpoints(int c) {
   // Dependency order: upstream components are final when a reader is rebuilt.
   std::vector<char> dirty(components_.size(), 0);

@@ -71,6 +71,9 @@ class Simulation {
   double Value(int var, double t, Side side = Side::kRight) const;
   double Rate(int var, double t, Side side = Side::kRight) const;
 
+  // Starts component c and everything reading from it afresh from the
+  // initial values now in the equation system (after an edit changed them).
+  void ResetToStart(int c);
   // Cuts component c back to t (with `strict`, to before t) and everything
   // reading from it (see above).
   void Truncate(int c, double t, bool strict = false);

@@ -1,0 +1,389 @@
+// asgard-core: the slave process of the document medium (seed 6.2.2).
+//
+//   medium plugin (in dochost)                 asgard-core
+//        │ ── [u32 length][JSON-RPC request] ──▶ │  load · update · simulate · open_rendition
+//        │ ◀── progress notifications ────────── │  close_rendition · frame · command · shutdown
+//        │ ◀── [u32 length][JSON-RPC response] ─ │
+//        └──────── frames: RGBA in a shared memfd (inherited), at offsets the host assigns
+//
+// Design: one process per animation subdocument holds the scene text, the
+// simulated run and one renderer per rendition (seed: "multiple renditions
+// of this animation are managed by this process").  Requests are handled one
+// at a time; `simulate` streams progress notifications, which double as the
+// heartbeat the host's watchdog waits for.  Every request is answered — a
+// malformed one with a JSON-RPC error (-32700 parse, -32600 invalid request,
+// -32601 unknown method, -32602 bad params) — and no exception leaves a
+// handler.  Only a frame header that cannot be trusted (a length above
+// kMaxMessage) ends the process, after an error reply, since the stream can
+// no longer be resynchronised.  The editing model (core/session) will later
+// take over `update`; for now it re-evaluates the text and re-simulates.
+//
+// Test hooks (environment ASGARD_CORE_FAULT): "hang-on-simulate" stops
+// answering when asked to simulate; "garbage-on-frame" answers a frame request
+// with bytes that are not JSON; "exit-on-load" exits at the first load.
+#include <sys/mman.h>
+#include <unistd.h>
+
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <iostream>
+#include <map>
+#include <memory>
+#include <nlohmann/json.hpp>
+#include <string>
+#include <thread>
+
+#include "core/app/pipeline.h"
+#include "core/render/sampler.h"
+#include "core/render/shaded.h"
+#include "core/render/wire.h"
+
+namespace {
+
+using nlohmann::json;
+using namespace asgard;
+
+constexpr uint32_t kMaxMessage = 64u << 20;
+
+const char* const kHelp = R"(Usage: asgard-core [--fd N] [--shm-fd N --shm-size BYTES]
+
+The slave process of the Asgard document medium: it is started by the medium
+plugin (dochost) for one animation subdocument and answers length-prefixed
+JSON-RPC 2.0 requests (a 4-byte big-endian length, then the JSON text) on the
+socket N (default: requests on standard input, answers on standard output).
+Frames are written as RGBA into the shared memory object inherited as --shm-fd.
+
+Methods: load {text}, update {text}, simulate {}, open_rendition {rendition,
+width, height, offset, device}, close_rendition {rendition}, frame {rendition,
+t, handles?, wire?}, command {line}, shutdown {}.
+
+Exit status 0 after shutdown or end of input, 2 on bad usage or a broken
+stream.
+)";
+
+bool ReadAll(int fd, void* buf, size_t n) {
+  auto* p = static_cast<char*>(buf);
+  while (n > 0) {
+    const ssize_t r = ::read(fd, p, n);
+    if (r < 0 && errno == EINTR) continue;
+    if (r <= 0) return false;
+    p += r, n -= static_cast<size_t>(r);
+  }
+  return true;
+}
+
+bool WriteAll(int fd, const void* buf, size_t n) {
+  const auto* p = static_cast<const char*>(buf);
+  while (n > 0) {
+    const ssize_t r = ::write(fd, p, n);
+    if (r < 0 && errno == EINTR) continue;
+    if (r <= 0) return false;
+    p += r, n -= static_cast<size_t>(r);
+  }
+  return true;
+}
+
+struct RpcError {
+  int code;
+  std::string message;
+};
+
+struct Rendition {
+  int width = 0, height = 0;
+  size_t offset = 0;
+  bool handles = false;
+  bool wire = false;
+  std::unique_ptr<render::ShadedRenderer> renderer;
+};
+
+class Slave {
+ public:
+  Slave(int in, int out, uint8_t* shm, size_t shm_size)
+      : in_(in), out_(out), shm_(shm), shm_size_(shm_size) {
+    if (const char* f = std::getenv("ASGARD_CORE_FAULT")) fault_ = f;
+  }
+
+  int Loop() {
+    for (;;) {
+      unsigned char head[4];
+      if (!ReadAll(in_, head, 4)) return 0;  // the host closed the channel
+      const uint32_t n = (uint32_t(head[0]) << 24) | (uint32_t(head[1]) << 16) |
+                         (uint32_t(head[2]) << 8) | head[3];
+      if (n > kMaxMessage) {
+        SendError(nullptr, -32600,
+                  "message length " + std::to_string(n) + " exceeds the limit of " +
+                      std::to_string(kMaxMessage) + " bytes; the stream cannot be resynchronised");
+        return 2;
+      }
+      std::string body(n, '\0');
+      if (n > 0 && !ReadAll(in_, body.data(), n)) return 0;
+      if (!Handle(body)) return 0;
+    }
+  }
+
+ private:
+  void Send(const json& message) {
+    const std::string s = message.dump(-1, ' ', false, json::error_handler_t::replace);
+    const uint32_t n = static_cast<uint32_t>(s.size());
+    const unsigned char head[4] = {static_cast<unsigned char>(n >> 24),
+                                   static_cast<unsigned char>(n >> 16),
+                                   static_cast<unsigned char>(n >> 8),
+                                   static_cast<unsigned char>(n)};
+    if (!WriteAll(out_, head, 4) || !WriteAll(out_, s.data(), s.size())) std::_Exit(0);
+  }
+  void SendError(const json* id, int code, const std::string& message) {
+    Send({{"jsonrpc", "2.0"},
+          {"id", id ? *id : json(nullptr)},
+          {"error", {{"code", code}, {"message", message}}}});
+  }
+
+  // False when the process should end (shutdown).
+  bool Handle(const std::string& body) {
+    const json request = json::parse(body, nullptr, false);
+    if (request.is_discarded()) {
+      SendError(nullptr, -32700, "parse error: the message is not JSON");
+      return true;
+    }
+    if (!request.is_object() || !request.contains("method") || !request["method"].is_string() ||
+        (request.contains("params") && !request["params"].is_object())) {
+      const json id = request.is_object() && request.contains("id") ? request["id"] : json();
+      SendError(&id, -32600, "invalid request: expected an object with a string 'method'");
+      return true;
+    }
+    const json id = request.value("id", json());
+    const std::string method = request["method"];
+    const json params = request.value("params", json::object());
+    try {
+      if (method == "shutdown") {
+        Send({{"jsonrpc", "2.0"}, {"id", id}, {"result", {{"ok", true}}}});
+        return false;
+      }
+      json result = Dispatch(method, params, id);
+      if (!result.is_null()) Send({{"jsonrpc", "2.0"}, {"id", id}, {"result", result}});
+    } catch (const RpcError& e) {
+      SendError(&id, e.code, e.message);
+    } catch (const json::exception& e) {
+      SendError(&id, -32602, std::string("invalid params: ") + e.what());
+    } catch (const std::exception& e) {
+      SendError(&id, -32603, std::string("internal error: ") + e.what());
+    }
+    return true;
+  }
+
+  static std::string Text(const json& params) {
+    if (!params.contains("text") || !params["text"].is_string())
+      throw RpcError{-32602, "invalid params: 'text' must be a string"};
+    return params["text"];
+  }
+
+  json Dispatch(const std::string& method, const json& params, const json& id) {
+    if (method == "load") return Load(Text(params));
+    if (method == "update") {
+      json loaded = Load(Text(params));
+      if (!loaded["ok"]) return loaded;
+      return Simulate(id);
+    }
+    if (method == "simulate") return Simulate(id);
+    if (method == "open_rendition") return OpenRendition(params);
+    if (method == "close_rendition") {
+      renditions_.erase(params.at("rendition").get<int>());
+      return {{"ok", true}};
+    }
+    if (method == "frame") return Frame(params);
+    if (method == "command") return Command(params.at("line").get<std::string>());
+    throw RpcError{-32601, "unknown method '" + method + "'"};
+  }
+
+  json Load(const std::string& text) {
+    if (fault_ == "exit-on-load") std::_Exit(3);
+    text_ = text;
+    sampler_.reset();
+    run_.reset();
+    for (auto& [k, r] : renditions_) r.renderer.reset();
+    app::Run check = app::Check(text_);
+    json diagnostics = json::array();
+    for (const auto& d : check.diagnostics)
+      diagnostics.push_back(
+          {{"line", d.span.line}, {"column", d.span.column}, {"message", d.message}});
+    json bodies = json::array();
+    for (const auto& b : check.scene.bodies) bodies.push_back(b.name);
+    return {{"ok", check.ok}, {"diagnostics", diagnostics}, {"bodies", bodies}};
+  }
+
+  json Simulate(const json& id) {
+    if (fault_ == "hang-on-simulate")
+      for (;;) std::this_thread::sleep_for(std::chrono::hours(1));
+    sampler_.reset();
+    run_ = std::make_unique<app::Run>();
+    app::RunOptions options;
+    auto last = std::chrono::steady_clock::now() - std::chrono::seconds(1);
+    double t0 = 0, t1 = 1;
+    if (auto check = app::Check(text_); check.ok) t0 = check.equations->t0, t1 = check.equations->t1;
+    options.progress = [&](double t) {
+      const auto now = std::chrono::steady_clock::now();
+      if (now - last < std::chrono::milliseconds(50)) return;
+      last = now;
+      const double f = t1 > t0 ? std::clamp((t - t0) / (t1 - t0), 0.0, 1.0) : 1.0;
+      Send({{"jsonrpc", "2.0"},
+            {"method", "progress"},
+            {"params", {{"id", id}, {"time", t}, {"fraction", f}}}});
+    };
+    *run_ = app::Simulate(text_, options);
+    if (!run_->ok) {
+      std::string message = run_->solver_error;
+      for (const auto& d : run_->diagnostics) {
+        if (!message.empty()) message += "; ";
+        message += std::to_string(d.span.line) + ":" + std::to_string(d.span.column) + ": " +
+                   d.message;
+      }
+      run_.reset();
+      throw RpcError{1, message.empty() ? "the scene could not be simulated" : message};
+    }
+    sampler_ = std::make_unique<render::SceneSampler>(*run_);
+    view_ = *sampler_->SceneView();
+    return {{"t0", sampler_->t0()},
+            {"t1", sampler_->t1()},
+            {"frame_rate", sampler_->frame_rate()},
+            {"bodies", sampler_->bodies().size()},
+            {"seconds", run_->seconds}};
+  }
+
+  json OpenRendition(const json& params) {
+    Rendition r;
+    r.width = params.at("width").get<int>();
+    r.height = params.at("height").get<int>();
+    r.offset = params.at("offset").get<size_t>();
+    if (r.width < 1 || r.height < 1 || r.width > 8192 || r.height > 8192)
+      throw RpcError{-32602, "invalid params: rendition size must be 1..8192 each way"};
+    const size_t bytes = static_cast<size_t>(r.width) * r.height * 4;
+    if (!shm_ || r.offset > shm_size_ || bytes > shm_size_ - r.offset)
+      throw RpcError{-32602, "invalid params: the rendition does not fit in shared memory"};
+    renditions_[params.at("rendition").get<int>()] = std::move(r);
+    return {{"ok", true}};
+  }
+
+  json Frame(const json& params) {
+    const int id = params.at("rendition").get<int>();
+    auto it = renditions_.find(id);
+    if (it == renditions_.end())
+      throw RpcError{-32602, "invalid params: no rendition " + std::to_string(id)};
+    if (!sampler_) throw RpcError{2, "the scene has not been simulated"};
+    Rendition& r = it->second;
+    if (fault_ == "garbage-on-frame") {
+      const char junk[] = "\x00\x00\x00\x05{{{{{";
+      WriteAll(out_, junk, sizeof junk - 1);
+      return nullptr;
+    }
+    double t = params.at("t").get<double>();
+    if (!std::isfinite(t)) throw RpcError{-32602, "invalid params: t must be finite"};
+    t = std::clamp(t, sampler_->t0(), sampler_->t1());
+    const bool handles = params.value("handles", r.handles);
+    const bool wire = params.value("wire", r.wire);
+    render::FrameInput f;
+    f.sampler = sampler_.get();
+    f.t = t;
+    f.poses = sampler_->Poses(t);
+    f.camera = render::MakeCamera(view_, r.width, r.height);
+    f.view_radius = view_.radius / view_.scale;
+    render::Overlays overlays;
+    overlays.handles = handles;
+    render::Image image;
+    if (wire) {
+      image = render::RenderWire(f, overlays);
+    } else {
+      if (!r.renderer) r.renderer = std::make_unique<render::ShadedRenderer>(r.width, r.height);
+      if (!r.renderer->ok()) throw RpcError{3, "shaded rendering: " + r.renderer->error()};
+      image = r.renderer->Render(*sampler_, f.poses, f.camera, sampler_->SceneLights());
+      if (handles) render::OverlayImage(image, f, overlays);
+    }
+    uint8_t* dst = shm_ + r.offset;
+    const size_t pixels = static_cast<size_t>(r.width) * r.height;
+    for (size_t i = 0; i < pixels; ++i) {
+      dst[4 * i] = image.rgb[3 * i];
+      dst[4 * i + 1] = image.rgb[3 * i + 1];
+      dst[4 * i + 2] = image.rgb[3 * i + 2];
+      dst[4 * i + 3] = 255;
+    }
+    return {{"width", r.width},
+            {"height", r.height},
+            {"stride", r.width * 4},
+            {"offset", r.offset},
+            {"time", t}};
+  }
+
+  json Command(const std::string& line) {
+    if (line == "handles on" || line == "handles off") {
+      for (auto& [k, r] : renditions_) r.handles = line == "handles on";
+      return {{"reply", "handles " + std::string(line == "handles on" ? "shown" : "hidden")}};
+    }
+    if (line == "info") {
+      if (!sampler_) return {{"reply", "not simulated"}};
+      std::string s;
+      for (const auto& b : sampler_->bodies()) s += (s.empty() ? "" : " ") + b.name;
+      return {{"reply", "bodies: " + s + "; t = " + std::to_string(sampler_->t0()) + " .. " +
+                            std::to_string(sampler_->t1())}};
+    }
+    if (line == "ping") return {{"reply", "pong"}};
+    throw RpcError{-32602, "unknown command '" + line + "' (known: handles on|off, info, ping)"};
+  }
+
+  int in_, out_;
+  uint8_t* shm_;
+  size_t shm_size_;
+  std::string fault_;
+  std::string text_;
+  std::unique_ptr<app::Run> run_;
+  std::unique_ptr<render::SceneSampler> sampler_;
+  render::ViewState view_;
+  std::map<int, Rendition> renditions_;
+};
+
+bool ParseSize(const char* s, long long& out) {
+  char* end = nullptr;
+  out = std::strtoll(s, &end, 10);
+  return end && *end == '\0' && out >= 0;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  int in = STDIN_FILENO, out = STDOUT_FILENO;
+  long long shm_fd = -1, shm_size = 0;
+  for (int i = 1; i < argc; ++i) {
+    const std::string a = argv[i];
+    long long v = 0;
+    if (a == "-h" || a == "--help") {
+      std::cout << kHelp;
+      return 0;
+    }
+    if ((a == "--fd" || a == "--shm-fd" || a == "--shm-size") && i + 1 < argc &&
+        ParseSize(argv[i + 1], v)) {
+      ++i;
+      if (a == "--fd")
+        in = out = static_cast<int>(v);
+      else if (a == "--shm-fd")
+        shm_fd = v;
+      else
+        shm_size = v;
+      continue;
+    }
+    std::cerr << "asgard-core: bad argument '" << a << "'\n\n" << kHelp;
+    return 2;
+  }
+  uint8_t* shm = nullptr;
+  if (shm_fd >= 0 && shm_size > 0) {
+    void* p = ::mmap(nullptr, static_cast<size_t>(shm_size), PROT_READ | PROT_WRITE, MAP_SHARED,
+                     static_cast<int>(shm_fd), 0);
+    if (p == MAP_FAILED) {
+      std::cerr << "asgard-core: cannot map the shared frame memory: " << std::strerror(errno)
+                << "\n";
+      return 2;
+    }
+    shm = static_cast<uint8_t*>(p);
+  }
+  Slave slave(in, out, shm, static_cast<size_t>(shm_size));
+  return slave.Loop();
+}

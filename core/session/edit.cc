@@ -1,0 +1,222 @@
+// Graphical edits as text patches (seed 4.2.2): a parameter is editable iff
+// its element's command ran once and its word is a literal number or vector;
+// an edit rewrites only the characters of that literal that change.
+#include <charconv>
+#include <cmath>
+
+#include "core/session/elements.h"
+#include "core/session/session.h"
+
+namespace asgard::session {
+namespace {
+
+// Shortest text that reads back as exactly `v`.
+std::string FormatNumber(double v) {
+  if (v == 0) return "0";
+  char buf[64];
+  const auto r = std::to_chars(buf, buf + sizeof buf, v);
+  return std::string(buf, r.ptr);
+}
+
+std::string ReadOnlyReason(const scene::ElementBase& e, const scene::Word* w) {
+  if (e.run_count > 1) return "made in a loop";
+  if (e.in_proc) return "made in a proc";
+  if (e.in_eval) return "built by eval";
+  if (!e.command.known()) return "its command could not be located in the text";
+  if (w && !w->literal) return w->reason.empty() ? "not a literal number" : w->reason;
+  if (w && !w->span.known()) return "its word could not be located in the text";
+  return "";
+}
+
+// The minimal edit turning text[begin, end) into `replacement`.
+TextEdit Minimal(const std::string& text, int begin, int end, const std::string& replacement) {
+  const std::string old = text.substr(begin, end - begin);
+  size_t p = 0;
+  while (p < old.size() && p < replacement.size() && old[p] == replacement[p]) ++p;
+  size_t s = 0;
+  while (s < old.size() - p && s < replacement.size() - p &&
+         old[old.size() - 1 - s] == replacement[replacement.size() - 1 - s])
+    ++s;
+  TextEdit e;
+  e.begin = begin + static_cast<int>(p);
+  e.end = end - static_cast<int>(s);
+  e.text = replacement.substr(p, replacement.size() - p - s);
+  return e;
+}
+
+// The option words a parameter spans: one word, or -x -y -z for a force's
+// "vector".
+std::vector<std::string> Words(scene::ElementKind kind, const std::string& param) {
+  const bool vector_of_words = kind == scene::ElementKind::kForce ||
+                               kind == scene::ElementKind::kTorque ||
+                               kind == scene::ElementKind::kLink;
+  if (vector_of_words && param == "vector") return {"x", "y", "z"};
+  return {param};
+}
+
+}  // namespace
+
+void Locate(TextEdit& edit, const std::string& text) {
+  auto at = [&](int offset, int& line, int& column) {
+    line = 1;
+    column = 1;
+    for (int i = 0; i < offset && i < static_cast<int>(text.size()); ++i) {
+      if (text[i] == '\n') {
+        ++line;
+        column = 1;
+      } else {
+        ++column;
+      }
+    }
+  };
+  at(edit.begin, edit.line, edit.column);
+  at(edit.end, edit.end_line, edit.end_column);
+}
+
+std::vector<Parameter> Session::Parameters() const {
+  std::vector<Parameter> out;
+  for (const ElementRef& e : Elements(scene_)) {
+    for (const auto& [key, word] : e.base->options) {
+      Parameter p;
+      p.kind = e.kind;
+      p.element = e.key;
+      p.param = key;
+      p.value = word.text;
+      p.span = word.span;
+      p.reason = ReadOnlyReason(*e.base, &word);
+      p.editable = p.reason.empty();
+      out.push_back(std::move(p));
+    }
+  }
+  return out;
+}
+
+EditResult Session::SetParameter(const std::string& element, const std::string& param,
+                                 const std::vector<double>& values) {
+  EditResult result;
+  const auto elements = Elements(scene_);
+  const ElementRef* e = Find(elements, element);
+  if (!e) {
+    result.error = "no element '" + element + "'";
+    return result;
+  }
+  for (double v : values)
+    if (!std::isfinite(v)) {
+      result.error = "values must be finite numbers";
+      return result;
+    }
+  const auto words = Words(e->kind, param);
+  std::vector<TextEdit> edits;
+  if (words.size() > 1 && values.size() != words.size()) {
+    result.error = param + " takes " + std::to_string(words.size()) + " numbers";
+    return result;
+  }
+  for (size_t i = 0; i < words.size(); ++i) {
+    const scene::Word* w = e->base->option(words[i]);
+    const std::string reason = ReadOnlyReason(*e->base, w);
+    if (!reason.empty()) {
+      result.error = element + "." + param + " is read-only: " + reason;
+      return result;
+    }
+    std::string body;
+    const size_t first = words.size() > 1 ? i : 0, count = words.size() > 1 ? 1 : values.size();
+    for (size_t k = first; k < first + count; ++k) body += (k > first ? " " : "") + FormatNumber(values[k]);
+    if (!w) {
+      // Not written yet: append the option to the command.
+      const std::string word = count > 1 ? "{" + body + "}" : body;
+      TextEdit add;
+      add.begin = add.end = e->base->command.end;
+      add.text = " -" + words[i] + " " + word;
+      edits.push_back(add);
+      continue;
+    }
+    const std::string source = text_.substr(w->span.begin, w->span.end - w->span.begin);
+    std::string replacement;
+    if (!source.empty() && (source[0] == '{' || source[0] == '"'))
+      replacement = source.substr(0, 1) + body + (source[0] == '{' ? "}" : "\"");
+    else if (count > 1)
+      replacement = "{" + body + "}";
+    else
+      replacement = body;
+    edits.push_back(Minimal(text_, w->span.begin, w->span.end, replacement));
+  }
+  return ApplyEdits(std::move(edits));
+}
+
+EditResult Session::CreateElement(const std::string& command) {
+  EditResult result;
+  std::string cmd = command;
+  while (!cmd.empty() && (cmd.back() == '\n' || cmd.back() == ' ')) cmd.pop_back();
+  const std::string kind = cmd.substr(0, cmd.find(' '));
+  // After the last command of the same kind, else at the end.
+  int at = static_cast<int>(text_.size());
+  bool found = false;
+  for (const ElementRef& e : Elements(scene_)) {
+    if (scene::ElementKindName(e.kind) != kind || e.base->run_count != 1 || !e.base->command.known())
+      continue;
+    if (!found || e.base->command.end > at) at = e.base->command.end;
+    found = true;
+  }
+  TextEdit edit;
+  if (found) {
+    // After the end of that command's line.
+    const size_t eol = text_.find('\n', at);
+    at = eol == std::string::npos ? static_cast<int>(text_.size()) : static_cast<int>(eol) + 1;
+    edit.begin = edit.end = at;
+    edit.text = cmd + "\n";
+    if (eol == std::string::npos) edit.text = "\n" + edit.text;
+  } else {
+    edit.begin = edit.end = static_cast<int>(text_.size());
+    edit.text = (text_.empty() || text_.back() == '\n' ? "" : "\n") + cmd + "\n";
+  }
+  return ApplyEdits({edit});
+}
+
+EditResult Session::DeleteElement(const std::string& element) {
+  EditResult result;
+  const auto elements = Elements(scene_);
+  const ElementRef* e = Find(elements, element);
+  if (!e) {
+    result.error = "no element '" + element + "'";
+    return result;
+  }
+  const std::string reason = ReadOnlyReason(*e->base, nullptr);
+  if (!reason.empty()) {
+    result.error = element + " cannot be deleted here: " + reason;
+    return result;
+  }
+  // The command and, when it stands alone on its lines, those lines.
+  int begin = e->base->command.begin, end = e->base->command.end;
+  int line_start = begin;
+  while (line_start > 0 && text_[line_start - 1] != '\n') --line_start;
+  size_t line_end = text_.find('\n', end);
+  const bool alone = text_.find_first_not_of(" \t", line_start) == static_cast<size_t>(begin) &&
+                     (line_end == std::string::npos ||
+                      text_.find_first_not_of(" \t;", end) >= line_end);
+  if (alone) {
+    begin = line_start;
+    end = line_end == std::string::npos ? static_cast<int>(text_.size()) : static_cast<int>(line_end) + 1;
+  }
+  TextEdit edit;
+  edit.begin = begin;
+  edit.end = end;
+  return ApplyEdits({edit});
+}
+
+EditResult Session::ApplyEdits(std::vector<TextEdit> edits) {
+  EditResult result;
+  std::sort(edits.begin(), edits.end(), [](const TextEdit& a, const TextEdit& b) {
+    return a.begin < b.begin;
+  });
+  std::string next = text_;
+  for (auto it = edits.rbegin(); it != edits.rend(); ++it)
+    next.replace(it->begin, it->end - it->begin, it->text);
+  for (TextEdit& e : edits) Locate(e, text_);
+  pending_edits_ = edits;
+  Adopt(next, true);
+  result.ok = true;
+  result.edits = std::move(edits);
+  return result;
+}
+
+}  // namespace asgard::session

@@ -1,0 +1,300 @@
+// The editing model: text patches, editability, change analysis,
+// incremental simulation, undo, views.
+#include <gtest/gtest.h>
+
+#include <cstring>
+#include <set>
+
+#include "core/session/session.h"
+
+namespace asgard::session {
+namespace {
+
+const char* kBall = "shape_set ball -desc {-sub {-pos {0 0 0} -sphere 0.5}}\n";
+
+void ExpectSameWaveforms(const solver::Simulation& a, const solver::Simulation& b) {
+  ASSERT_EQ(a.component_count(), b.component_count());
+  for (int c = 0; c < a.component_count(); ++c) {
+    const auto& wa = a.component(c).waveform();
+    const auto& wb = b.component(c).waveform();
+    ASSERT_EQ(wa.size(), wb.size()) << "component " << c;
+    const size_t bytes = wa.variable_count() * sizeof(double);
+    for (int k = 0; k < wa.size(); ++k) {
+      ASSERT_EQ(wa.time(k), wb.time(k)) << "component " << c << " sample " << k;
+      ASSERT_EQ(std::memcmp(wa.x(k), wb.x(k), bytes), 0) << "component " << c << " sample " << k;
+      ASSERT_EQ(std::memcmp(wa.f(k), wb.f(k), bytes), 0) << "component " << c << " sample " << k;
+    }
+  }
+}
+
+TEST(GraphicalEdit, MovingAStandaloneBodyChangesOnlyTheDigitsOfItsLiteral) {
+  const std::string text = std::string(kBall) +
+                           "# a comment\n"
+                           "body b1 -shape ball   -init_pos {1 2 3}   ;# keep this comment\n"
+                           "body b2 -shape ball -init_pos {4 5 6}\n";
+  Session s(text);
+  const auto r = s.SetParameter("b1", "init_pos", {1.25, 2, 3});
+  ASSERT_TRUE(r.ok) << r.error;
+  // The smallest change: ".25" inserted after the "1" of {1 2 3}.
+  ASSERT_EQ(r.edits.size(), 1u);
+  EXPECT_EQ(r.edits[0].text, ".25");
+  EXPECT_EQ(r.edits[0].begin, r.edits[0].end);
+  EXPECT_EQ(r.edits[0].begin, static_cast<int>(text.find("{1 2 3}")) + 2);
+  EXPECT_EQ(r.edits[0].line, 3);
+  std::string expected = text;
+  expected.replace(expected.find("{1 2 3}") + 1, 1, "1.25");
+  EXPECT_EQ(s.text(), expected);
+  EXPECT_EQ(s.scene().FindBody("b1")->init_pos[0], 1.25);
+}
+
+TEST(GraphicalEdit, AnOptionNotWrittenYetIsAppendedToItsCommand) {
+  Session s(std::string(kBall) + "body b1 -shape ball\n");
+  ASSERT_TRUE(s.SetParameter("b1", "init_dpos", {0, 1, 0}).ok);
+  EXPECT_EQ(s.text(), std::string(kBall) + "body b1 -shape ball -init_dpos {0 1 0}\n");
+}
+
+TEST(GraphicalEdit, ForceVectorsAndOffsetsBecomeTheirWords) {
+  Session s(std::string(kBall) + "body b1 -shape ball\nforce -body b1 -x 0 -y -1 -z 0 -offset {0 0.5 0}\n");
+  ASSERT_TRUE(s.SetParameter("force#0", "vector", {0, -9.81, 0}).ok);
+  ASSERT_TRUE(s.SetParameter("force#0", "offset", {0.5, 0.5, 0}).ok);
+  EXPECT_EQ(s.text(), std::string(kBall) +
+                          "body b1 -shape ball\nforce -body b1 -x 0 -y -9.81 -z 0 -offset {0.5 0.5 0}\n");
+}
+
+TEST(Editability, LoopsAndExpressionsAreReadOnlyWithTheirReason) {
+  Session s(std::string(kBall) +
+            "foreach i {1 2 3} { body obj_$i -shape ball -init_pos \"$i 0 0\" }\n"
+            "set y 2\n"
+            "body ex -shape ball -init_pos [list 0 $y 0]\n"
+            "body f -shape ball -init_pos {0 0 1}\n");
+  auto r = s.SetParameter("obj_2", "init_pos", {0, 0, 0});
+  EXPECT_FALSE(r.ok);
+  EXPECT_NE(r.error.find("made in a loop"), std::string::npos) << r.error;
+  r = s.SetParameter("ex", "init_pos", {0, 0, 0});
+  EXPECT_FALSE(r.ok);
+  EXPECT_NE(r.error.find("computed by an expression"), std::string::npos) << r.error;
+  bool found = false;
+  for (const auto& p : s.Parameters()) {
+    if (p.element == "f" && p.param == "init_pos") {
+      found = true;
+      EXPECT_TRUE(p.editable);
+      EXPECT_TRUE(p.span.known());
+    }
+    if (p.element == "obj_1" && p.param == "init_pos") {
+      EXPECT_EQ(p.reason, "made in a loop");
+    }
+  }
+  EXPECT_TRUE(found);
+}
+
+Change ChangeOf(const std::vector<ElementChange>& changes, scene::ElementKind kind,
+                const std::string& name, int new_index = -1) {
+  for (const auto& c : changes)
+    if (c.kind == kind && c.name == name && (new_index < 0 || c.new_index == new_index)) return c.change;
+  ADD_FAILURE() << "no change record for " << name;
+  return Change::kUnchanged;
+}
+
+TEST(ChangeAnalysis, RenameReorderAddAndDeleteAreClassified) {
+  const std::string base = std::string(kBall) +
+                           "body a -shape ball -init_pos {0 0 0}\n"
+                           "body b -shape ball -init_pos {1 0 0}\n";
+  Session s(base);
+  auto ch = s.UpdateText(std::string(kBall) +
+                         "body z -shape ball -init_pos {0 0 0}\n"
+                         "body b -shape ball -init_pos {1 0 0}\n");
+  EXPECT_EQ(ChangeOf(ch, scene::ElementKind::kBody, "z"), Change::kRenamed);
+  EXPECT_EQ(ChangeOf(ch, scene::ElementKind::kBody, "b"), Change::kUnchanged);
+  ch = s.UpdateText(std::string(kBall) +
+                    "body b -shape ball -init_pos {1 0 0}\n"
+                    "body z -shape ball -init_pos {0 0 0}\n");
+  EXPECT_EQ(ChangeOf(ch, scene::ElementKind::kBody, "z"), Change::kUnchanged);
+  EXPECT_EQ(ChangeOf(ch, scene::ElementKind::kBody, "b"), Change::kUnchanged);
+  ch = s.UpdateText(std::string(kBall) + "body b -shape ball -init_pos {1 0 0}\n" +
+                    "body c -shape ball\n");
+  EXPECT_EQ(ChangeOf(ch, scene::ElementKind::kBody, "z"), Change::kRemoved);
+  EXPECT_EQ(ChangeOf(ch, scene::ElementKind::kBody, "c"), Change::kAdded);
+  ch = s.UpdateText(std::string(kBall) + "body b -shape ball -init_pos {2 0 0}\nbody c -shape ball\n");
+  EXPECT_EQ(ChangeOf(ch, scene::ElementKind::kBody, "b"), Change::kModified);
+}
+
+TEST(ChangeAnalysis, EditingOneOfTwoIdenticalUnnamedForcesIsAttributedToIt) {
+  const std::string base = std::string(kBall) +
+                           "body a -shape ball\n"
+                           "force -body a -x 0 -y -1 -z 0\n"
+                           "force -body a -x 0 -y -1 -z 0\n";
+  Session s(base);
+  std::string edited = base;
+  edited.replace(edited.rfind("-y -1"), 5, "-y -2");
+  const auto ch = s.UpdateText(edited);
+  int modified = -1, unchanged = -1;
+  for (const auto& c : ch) {
+    if (c.kind != scene::ElementKind::kForce) continue;
+    if (c.change == Change::kModified) modified = c.new_index;
+    if (c.change == Change::kUnchanged) unchanged = c.new_index;
+  }
+  EXPECT_EQ(modified, 1);
+  EXPECT_EQ(unchanged, 0);
+  // And the other way round.
+  std::string first = base;
+  first.replace(first.find("-y -1"), 5, "-y -3");
+  Session t(base);
+  for (const auto& c : t.UpdateText(first)) {
+    if (c.kind == scene::ElementKind::kForce) {
+      EXPECT_EQ(c.change, c.new_index == 0 ? Change::kModified : Change::kUnchanged);
+    }
+  }
+}
+
+std::string Balls(int n) {
+  std::string s = kBall;
+  for (int i = 0; i < n; ++i)
+    s += "body b" + std::to_string(i) + " -shape ball -init_pos {" + std::to_string(3 * i) +
+         " 0 0} -init_dpos {0 1 0}\nforce -body b" + std::to_string(i) +
+         " -x 0 -y {-9.81 * b" + std::to_string(i) + ".mass} -z {-b" + std::to_string(i) + ".z}\n";
+  return s + "simulator -finish 2\n";
+}
+
+TEST(Incremental, MovingOneOfManyBodiesResetsOnlyItsComponentsAndMatchesFromScratch) {
+  Session s(Balls(12));
+  ASSERT_TRUE(s.Simulate());
+  EXPECT_TRUE(s.last_stats().rebuilt);
+  ASSERT_TRUE(s.SetParameter("b7", "init_pos", {21, 0.5, 0}).ok);
+  ASSERT_TRUE(s.Simulate());
+  const auto stats = s.last_stats();
+  EXPECT_FALSE(stats.rebuilt);
+  // Exactly the components holding b7's variables restart (nothing reads them).
+  const auto& eq = *s.run()->equations;
+  const auto& sim = *s.run()->simulation;
+  std::set<int> own;
+  for (int k = 0; k < physics::kBodySlots; ++k)
+    own.insert(sim.component_of(eq.bodies[eq.FindBody("b7")].first_var + k));
+  EXPECT_EQ(stats.components_reset, static_cast<int>(own.size()));
+  EXPECT_EQ(own.size(), 9u);  // x, dx, y, dy, {z, dz}, w1, w2, w3, q
+  Session scratch(s.text());
+  ASSERT_TRUE(scratch.Simulate());
+  // The re-simulation took exactly the steps a from-scratch run spends on
+  // those components, and no others.
+  long own_steps = 0;
+  for (int c : own) own_steps += scratch.run()->simulation->component(c).counters().steps;
+  EXPECT_EQ(stats.steps, own_steps);
+  EXPECT_LT(stats.steps, scratch.run()->simulation->totals().steps / 6);
+  ExpectSameWaveforms(*s.run()->simulation, *scratch.run()->simulation);
+}
+
+TEST(Incremental, AnEditThatChangesWhoCollidesWithWhomMatchesFromScratch) {
+  const std::string base = std::string(kBall) +
+                           "body a -shape ball -mass 1 -init_pos {0 0 0} -init_dpos {1 0 0}\n"
+                           "body b -shape ball -mass 1 -init_pos {3 0 0}\n"
+                           "body c -shape ball -mass 1 -init_pos {3 5 0}\n"
+                           "body idle -shape ball -init_pos {0 -9 0} -init_drot {0 0 1}\n"
+                           "simulator -finish 4\n";
+  Session s(base);
+  ASSERT_TRUE(s.Simulate());
+  ASSERT_EQ(s.run()->collisions->impacts().size(), 1u);  // a hits b
+  // Aim a at c instead: a now misses b and hits c.
+  ASSERT_TRUE(s.SetParameter("a", "init_dpos", {1, 5.0 / 3.0, 0}).ok);
+  ASSERT_TRUE(s.Simulate());
+  EXPECT_FALSE(s.last_stats().rebuilt);
+  Session scratch(s.text());
+  ASSERT_TRUE(scratch.Simulate());
+  const auto& got = s.run()->collisions->impacts();
+  const auto& want = scratch.run()->collisions->impacts();
+  ASSERT_EQ(got.size(), want.size());
+  ASSERT_EQ(got.size(), 1u);
+  EXPECT_EQ(got[0].b, 2);  // c
+  EXPECT_EQ(got[0].t, want[0].t);
+  ExpectSameWaveforms(*s.run()->simulation, *scratch.run()->simulation);
+  // The idle body was never touched.
+  const auto& sim = *s.run()->simulation;
+  const int idle = s.run()->equations->bodies[3].first_var;
+  EXPECT_EQ(sim.component(sim.component_of(idle + physics::kQw)).counters().truncated_steps, 0);
+}
+
+TEST(Undo, UndoingAGraphicalEditRestoresTextAndResultsExactly) {
+  const std::string base = Balls(3) + "# trailing comment\n";
+  Session s(base);
+  ASSERT_TRUE(s.Simulate());
+  Session original(base);
+  ASSERT_TRUE(original.Simulate());
+  ASSERT_TRUE(s.SetParameter("b1", "init_pos", {3.5, 0, 0}).ok);
+  ASSERT_TRUE(s.Simulate());
+  ASSERT_TRUE(s.Undo());
+  EXPECT_EQ(s.text(), base);
+  ASSERT_TRUE(s.Simulate());
+  EXPECT_FALSE(s.last_stats().rebuilt);
+  ExpectSameWaveforms(*s.run()->simulation, *original.run()->simulation);
+  ASSERT_TRUE(s.Redo());
+  EXPECT_NE(s.text().find("{3.5 0 0}"), std::string::npos);
+  // A text edit and a graphical edit share one history.
+  s.UpdateText(s.text() + "body extra -shape ball\n");
+  ASSERT_TRUE(s.Undo());
+  EXPECT_NE(s.text().find("{3.5 0 0}"), std::string::npos);
+  ASSERT_TRUE(s.Undo());
+  EXPECT_EQ(s.text(), base);
+  EXPECT_FALSE(s.Undo());
+}
+
+struct RecordingView : SessionView {
+  std::string text;
+  int edits = 0, scenes = 0, simulations = 0;
+  void TextChanged(const std::vector<TextEdit>& e, const std::string&) override {
+    // Apply the edits to our copy, as a language view would.
+    for (auto it = e.rbegin(); it != e.rend(); ++it)
+      text.replace(it->begin, it->end - it->begin, it->text);
+    edits += static_cast<int>(e.size());
+  }
+  void SceneChanged(const std::vector<ElementChange>&) override { ++scenes; }
+  void Simulated() override { ++simulations; }
+};
+
+TEST(Views, EveryViewIsNotifiedAndKeepsItsTextInStep) {
+  const std::string base = Balls(2);
+  Session s(base);
+  RecordingView v1, v2;
+  v1.text = v2.text = base;
+  s.AddView(&v1);
+  const int id2 = s.AddView(&v2);
+  ASSERT_TRUE(s.SetParameter("b0", "init_pos", {0, 1, 0}).ok);
+  s.UpdateText(s.text() + "body c -shape ball\n");
+  ASSERT_TRUE(s.Simulate());
+  EXPECT_EQ(v1.text, s.text());
+  EXPECT_EQ(v2.text, s.text());
+  EXPECT_EQ(v1.scenes, 2);
+  EXPECT_EQ(v1.simulations, 1);
+  s.RemoveView(id2);
+  ASSERT_TRUE(s.SetParameter("b1", "init_pos", {0, 2, 0}).ok);
+  EXPECT_EQ(v1.text, s.text());
+  EXPECT_NE(v2.text, s.text());
+}
+
+TEST(CreateDelete, CommandsAreInsertedAfterTheirKindAndRemovedWithTheirLine) {
+  const std::string base = std::string(kBall) +
+                           "body a -shape ball\n"
+                           "force -body a -x 0 -y -1 -z 0\n"
+                           "simulator -finish 1\n";
+  Session s(base);
+  ASSERT_TRUE(s.CreateElement("force -body a -x 1 -y 0 -z 0").ok);
+  EXPECT_EQ(s.text(), std::string(kBall) +
+                          "body a -shape ball\n"
+                          "force -body a -x 0 -y -1 -z 0\n"
+                          "force -body a -x 1 -y 0 -z 0\n"
+                          "simulator -finish 1\n");
+  EXPECT_EQ(s.scene().forces.size(), 2u);
+  ASSERT_TRUE(s.DeleteElement("force#0").ok);
+  EXPECT_EQ(s.text(), std::string(kBall) +
+                          "body a -shape ball\n"
+                          "force -body a -x 1 -y 0 -z 0\n"
+                          "simulator -finish 1\n");
+  EXPECT_FALSE(s.DeleteElement("force#7").ok);
+}
+
+TEST(Errors, AScriptWithErrorsStillAppliesItsValidPart) {
+  Session s(std::string(kBall) + "body a -shape ball\nbody b -shape nosuch\nsimulator -finish 1\n");
+  EXPECT_TRUE(s.scene().has_errors());
+  ASSERT_TRUE(s.Simulate());
+  EXPECT_EQ(s.run()->equations->bodies.size(), 1u);
+}
+
+}  // namespace
+}  // namespace asgard::session
