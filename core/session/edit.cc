@@ -120,7 +120,20 @@ EditResult Session::SetParameter(const std::string& element, const std::string& 
     }
     std::string body;
     const size_t first = words.size() > 1 ? i : 0, count = words.size() > 1 ? 1 : values.size();
-    for (size_t k = first; k < first + count; ++k) body += (k > first ? " " : "") + FormatNumber(values[k]);
+    if (param == "points") {
+      // Trajectory knots: {{t x y z} {t x y z} ...}
+      if (values.size() % 4 != 0) {
+        result.error = "points takes groups of four numbers: t x y z";
+        return result;
+      }
+      for (size_t k = 0; k < values.size(); k += 4)
+        body += std::string(k ? " " : "") + "{" + FormatNumber(values[k]) + " " +
+                FormatNumber(values[k + 1]) + " " + FormatNumber(values[k + 2]) + " " +
+                FormatNumber(values[k + 3]) + "}";
+    } else {
+      for (size_t k = first; k < first + count; ++k)
+        body += (k > first ? " " : "") + FormatNumber(values[k]);
+    }
     if (!w) {
       // Not written yet: append the option to the command.
       const std::string word = count > 1 ? "{" + body + "}" : body;

@@ -61,6 +61,17 @@ TEST(GraphicalEdit, ForceVectorsAndOffsetsBecomeTheirWords) {
                           "body b1 -shape ball\nforce -body b1 -x 0 -y -9.81 -z 0 -offset {0.5 0.5 0}\n");
 }
 
+TEST(GraphicalEdit, TrajectoryKnotsKeepTheirListShape) {
+  Session s(std::string(kBall) +
+            "body b -shape ball\n"
+            "trajectory tr -points {{0 0 0 0} {1 1 0 0}} -body b -state pos\n");
+  ASSERT_TRUE(s.SetParameter("tr", "points", {0, 0, 0, 0, 1.5, 1, 2, 0}).ok);
+  EXPECT_NE(s.text().find("-points {{0 0 0 0} {1.5 1 2 0}}"), std::string::npos) << s.text();
+  ASSERT_EQ(s.scene().trajectories[0].knots.size(), 2u);
+  EXPECT_EQ(s.scene().trajectories[0].knots[1].t, 1.5);
+  EXPECT_FALSE(s.SetParameter("tr", "points", {0, 1, 2}).ok);
+}
+
 TEST(Editability, LoopsAndExpressionsAreReadOnlyWithTheirReason) {
   Session s(std::string(kBall) +
             "foreach i {1 2 3} { body obj_$i -shape ball -init_pos \"$i 0 0\" }\n"
