@@ -25,6 +25,7 @@
 
 #include "core/app/commands.h"
 #include "core/app/pipeline.h"
+#include "core/physics/trajectory.h"
 #include "core/lang/lang.h"
 #include "core/render/sampler.h"
 #include "core/render/shaded.h"
@@ -250,12 +251,14 @@ struct Loaded {
   std::unique_ptr<render::SceneSampler> sampler;
   render::ViewState view;
   std::vector<double> times;
-  int follow = -1;  // body index for --follow
+  int follow = -1;      // body index for --follow or view -follow
+  int trajectory = -1;  // curve index for view -trajectory
 
-  // The camera at time t: the view centre follows the --follow body.
+  // The camera at time t: the view centre follows the body or trajectory.
   render::Camera CameraAt(double t, int width, int height) const {
     render::ViewState v = view;
     if (follow >= 0) v.center = sampler->Poses(t)[follow].p;
+    if (trajectory >= 0) v.center = run.equations->curves[trajectory]->Value(t);
     return render::MakeCamera(v, width, height);
   }
 };
@@ -314,11 +317,31 @@ int Load(const Common& c, const char* help, bool movie, Loaded& l) {
   if (c.scale) l.view.scale = *c.scale;
   if (c.center) l.view.center = *c.center;
   if (c.pan) l.view.position = *c.pan;
-  if (!c.follow.empty()) {
+  // The scene's view element may tie the centre to a body or a trajectory;
+  // --follow on the command line wins.
+  const scene::View* element = nullptr;
+  for (const auto& e : l.run.scene.views)
+    if (c.view_name.empty() || e.name == c.view_name) element = &e;
+  std::string follow = c.follow;
+  if (follow.empty() && element && !element->follow.empty()) follow = element->follow;
+  if (c.follow.empty() && element && !element->trajectory.empty()) {
+    const auto& ts = l.run.scene.trajectories;
+    for (size_t k = 0; k < ts.size(); ++k)
+      if (ts[k].name == element->trajectory) l.trajectory = static_cast<int>(k);
+    if (l.trajectory < 0) {
+      std::cerr << "asgard: " << c.file << ": view: no trajectory '" << element->trajectory << "'\n";
+      return 1;
+    }
+  }
+  if (!follow.empty()) {
     const auto& bodies = l.sampler->bodies();
     for (size_t b = 0; b < bodies.size(); ++b)
-      if (bodies[b].name == c.follow) l.follow = static_cast<int>(b);
-    if (l.follow < 0) return Usage("--follow: the scene has no body '" + c.follow + "'", help);
+      if (bodies[b].name == follow) l.follow = static_cast<int>(b);
+    if (l.follow < 0) {
+      if (!c.follow.empty()) return Usage("--follow: the scene has no body '" + follow + "'", help);
+      std::cerr << "asgard: " << c.file << ": view: no body '" << follow << "' to follow\n";
+      return 1;
+    }
   }
   return -1;
 }

@@ -350,7 +350,7 @@ void LightSourceCommand(EvalContext& ctx, const Invocation& inv, std::string& na
 
 void ViewCommand(EvalContext& ctx, const Invocation& inv, std::string& name) {
   int first = OptionalName(inv, name);
-  Options o(inv, first, {"pos", "rot", "scale", "center"});
+  Options o(inv, first, {"pos", "rot", "scale", "center", "follow", "trajectory"});
   CheckUnique(ctx.scene.views, inv, name);
   scene::View v;
   FillBase(inv, v);
@@ -359,6 +359,10 @@ void ViewCommand(EvalContext& ctx, const Invocation& inv, std::string& name) {
   v.rotation = o.Rotation("rot").value_or(v.rotation);
   v.scale = o.Positive("scale").value_or(v.scale);
   v.center = o.Vector("center");
+  v.follow = o.String("follow").value_or("");
+  v.trajectory = o.String("trajectory").value_or("");
+  if (!v.follow.empty() && !v.trajectory.empty())
+    throw ElementError{"view: give -follow or -trajectory, not both", o.Get("trajectory")->arg};
   RecordOptions(inv, o, v);
   ctx.scene.views.push_back(std::move(v));
 }

@@ -201,12 +201,16 @@ struct LightSource : ElementBase {
   double intensity = 1.0;
 };
 
-// view ?NAME? -pos V -rot R -scale S -center V
+// view ?NAME? -pos V -rot R -scale S -center V ?-follow BODY? ?-trajectory T?
+//   -follow / -trajectory tie the centre of rotation and scaling to a body's
+//   centre of mass or a trajectory's value over time (camera motion, seed 4.1.7).
 struct View : ElementBase {
   Vec3 position{0, 0, 0};
   Quat rotation{1, 0, 0, 0};
   double scale = 1.0;
   std::optional<Vec3> center;
+  std::string follow;
+  std::string trajectory;
 };
 
 enum class Severity : uint8_t { kError, kWarning };

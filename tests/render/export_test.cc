@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 
 #include <cstring>
+#include <fstream>
 #include <nlohmann/json.hpp>
 #include <regex>
 
@@ -318,6 +319,45 @@ TEST(RenderCli, NumberedFramesAndStills) {
       << out;
   ASSERT_EQ(Asgard("export " + scene + " --frames 0:1:5 -o '" + dir + "/s.glb'", &out), 0) << out;
   EXPECT_NE(out.find("5 animation samples"), std::string::npos) << out;
+}
+
+
+// A view element with -follow keeps the followed body at the centre of every
+// frame while the rest of the scene moves past.
+TEST(Cli, ViewFollowKeepsTheBodyCentred) {
+  const std::string dir = t::ScratchDir("follow");
+  const std::string scene = dir + "/follow.al";
+  {
+    std::ofstream out(scene);
+    out << "shape_set ball -desc {-sub {-pos {0 0 0} -sphere 0.5}}\n"
+           "shape_set floor -desc {-sub {-box {40 0.2 4}}}\n"
+           "body b -shape ball -init_pos {0 3 0} -init_dpos {4 0 0} -color red\n"
+           "body f -shape floor -static 1 -init_pos {10 -0.1 0} -color gray\n"
+           "view cam -follow b -scale 3 -rot {0 0 0}\n"
+           "simulator -finish 3\n";
+  }
+  for (double t : {0.5, 2.5}) {
+    const std::string png = dir + "/f" + std::to_string(static_cast<int>(10 * t)) + ".png";
+    ASSERT_EQ(Asgard("render '" + scene + "' -t " + std::to_string(t) + " --size 160x120 -o '" +
+                     png + "'"),
+              0);
+    const auto img = render::ReadPng(png);
+    ASSERT_TRUE(img.has_value());
+    // Centroid of the red pixels.
+    double sx = 0, sy = 0, n = 0;
+    for (int y = 0; y < img->height; ++y)
+      for (int x = 0; x < img->width; ++x) {
+        const uint8_t* p = img->Pixel(x, y);
+        if (p[0] > 150 && p[1] < 90 && p[2] < 90) {
+          sx += x;
+          sy += y;
+          ++n;
+        }
+      }
+    ASSERT_GT(n, 10) << "no ball at t=" << t;
+    EXPECT_NEAR(sx / n, 80, 2) << "t=" << t;
+    EXPECT_NEAR(sy / n, 60, 2) << "t=" << t;
+  }
 }
 
 }  // namespace
