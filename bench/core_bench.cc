@@ -69,10 +69,10 @@ std::string ManyPendulums(int n) {
   for (int i = 0; i < n; ++i) {
     const double len = 1.0 + 3.0 * i / std::max(1, n - 1);
     const double px = 3.0 * i;
-    s << "body p" << i << " -shape ball -mass 1 -init_pos {" << px + len * 0.6 << " "
-      << -len * 0.8 << " 0}\n"
-      << "link -body1 p" << i << " -offset1 {" << -len * 0.6 << " " << len * 0.8
-      << " 0} -x " << px << " -y 0 -z 0 -tightness 1e5\n"
+    s << "body p" << i << " -shape ball -mass 1 -init_pos {" << px + len * 0.6 << " " << -len * 0.8
+      << " 0}\n"
+      << "link -body1 p" << i << " -offset1 {" << -len * 0.6 << " " << len * 0.8 << " 0} -x " << px
+      << " -y 0 -z 0 -tightness 1e5\n"
       << "force -body p" << i << " -x 0 -y -9.81 -z 0 -gravitational 1\n";
   }
   s << "simulator -finish 5\n";

@@ -1,0 +1,4 @@
+#include "bench/suites.h"
+namespace asgard::bench {
+void RunStress(const Config&) {}
+}  // namespace asgard::bench

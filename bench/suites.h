@@ -1,0 +1,21 @@
+// The benchmark suites (each writes CSV files into Config::out_dir).
+#pragma once
+
+#include "bench/harness.h"
+
+namespace asgard::bench {
+
+// Work–precision: every scene × every code × tolerance (or step) sweep.
+//   workprec.csv, references.csv
+void RunWorkPrecision(const Config& cfg);
+// Stiff links from ω0 = 1e2 to 1e6: Asgard against CVODE.  stiff.csv
+void RunStiffSweep(const Config& cfg);
+// Seed Figure 5.7 (fig57.csv), Figure 5.11 (fig511.csv), skipping idle
+// subsystems and editing (skip.csv).
+void RunFigure57(const Config& cfg);
+void RunFigure511(const Config& cfg);
+void RunSkip(const Config& cfg);
+// Numerical stress suite.  stress.csv, energy.csv
+void RunStress(const Config& cfg);
+
+}  // namespace asgard::bench
