@@ -128,10 +128,9 @@ class Slave {
   void Send(const json& message) {
     const std::string s = message.dump(-1, ' ', false, json::error_handler_t::replace);
     const uint32_t n = static_cast<uint32_t>(s.size());
-    const unsigned char head[4] = {static_cast<unsigned char>(n >> 24),
-                                   static_cast<unsigned char>(n >> 16),
-                                   static_cast<unsigned char>(n >> 8),
-                                   static_cast<unsigned char>(n)};
+    const unsigned char head[4] = {
+        static_cast<unsigned char>(n >> 24), static_cast<unsigned char>(n >> 16),
+        static_cast<unsigned char>(n >> 8), static_cast<unsigned char>(n)};
     if (!WriteAll(out_, head, 4) || !WriteAll(out_, s.data(), s.size())) std::_Exit(0);
   }
   void SendError(const json* id, int code, const std::string& message) {
@@ -221,7 +220,8 @@ class Slave {
     app::RunOptions options;
     auto last = std::chrono::steady_clock::now() - std::chrono::seconds(1);
     double t0 = 0, t1 = 1;
-    if (auto check = app::Check(text_); check.ok) t0 = check.equations->t0, t1 = check.equations->t1;
+    if (auto check = app::Check(text_); check.ok)
+      t0 = check.equations->t0, t1 = check.equations->t1;
     options.progress = [&](double t) {
       const auto now = std::chrono::steady_clock::now();
       if (now - last < std::chrono::milliseconds(50)) return;
@@ -236,8 +236,8 @@ class Slave {
       std::string message = run_->solver_error;
       for (const auto& d : run_->diagnostics) {
         if (!message.empty()) message += "; ";
-        message += std::to_string(d.span.line) + ":" + std::to_string(d.span.column) + ": " +
-                   d.message;
+        message +=
+            std::to_string(d.span.line) + ":" + std::to_string(d.span.column) + ": " + d.message;
       }
       run_.reset();
       throw RpcError{1, message.empty() ? "the scene could not be simulated" : message};
