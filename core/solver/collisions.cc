@@ -268,23 +268,18 @@ void CollisionMonitor::AfterStep(int component) {
 
 // ---- the window check ----------------------------------------------------------
 
-double CollisionMonitor::MaxAbs(int var, double t0, double t1) const {
-  // Largest |value| of a variable's playback interpolant over [t0, t1].
-  const Component& comp = sim_.component(sim_.component_of(var));
-  const Waveform& w = comp.waveform();
+// Calls f(cubic, s0, s1, h) for each piece of a variable's playback
+// interpolant over [t0, t1], restricted to the window (s in [s0, s1]).
+template <typename F>
+void CollisionMonitor::ForEachSegment(int var, double t0, double t1, F&& f) const {
+  const Waveform& w = sim_.component(sim_.component_of(var)).waveform();
   const int i = sim_.local_index(var);
-  double m = std::max(std::abs(sim_.Value(var, t0)), std::abs(sim_.Value(var, t1)));
-  int k = w.KeepIndex(t0);
-  for (; k + 1 < w.size() && w.time(k) < t1; ++k) {
+  for (int k = w.KeepIndex(t0); k + 1 < w.size() && w.time(k) < t1; ++k) {
     const double h = w.time(k + 1) - w.time(k);
     if (h <= 0) continue;
     const Cubic p = HermiteCubic(w.x(k)[i], w.f(k)[i], w.x(k + 1)[i], w.f(k + 1)[i], h);
-    const double s0 = std::max(0.0, (t0 - w.time(k)) / h), s1 = std::min(1.0, (t1 - w.time(k)) / h);
-    double lo = kInf, hi = -kInf;
-    ValueRange(p, s0, s1, lo, hi);
-    m = std::max({m, std::abs(lo), std::abs(hi)});
+    f(p, std::max(0.0, (t0 - w.time(k)) / h), std::min(1.0, (t1 - w.time(k)) / h), h);
   }
-  return m;
 }
 
 collide::Pose CollisionMonitor::PoseAt(int b, double t) const {
@@ -310,18 +305,11 @@ collide::Motion CollisionMonitor::MotionOf(int b, double t0, double t1) const {
   // Bounds on the rates of the interpolated position and orientation: the
   // exact maxima of the Hermite derivatives over the window.
   auto rate_max = [&](int var) {
-    const Waveform& w = sim_.component(sim_.component_of(var)).waveform();
-    const int i = sim_.local_index(var);
-    double r = 0;
-    for (int k = w.KeepIndex(t0); k + 1 < w.size() && w.time(k) < t1; ++k) {
-      const double h = w.time(k + 1) - w.time(k);
-      if (h <= 0) continue;
-      const Cubic p = HermiteCubic(w.x(k)[i], w.f(k)[i], w.x(k + 1)[i], w.f(k + 1)[i], h);
-      const double s0 = std::max(0.0, (t0 - w.time(k)) / h);
-      const double s1 = std::min(1.0, (t1 - w.time(k)) / h);
+    double r = std::abs(sim_.Rate(var, t0));
+    ForEachSegment(var, t0, t1, [&](const Cubic& p, double s0, double s1, double h) {
       r = std::max(r, RateMax(p, s0, s1, h));
-    }
-    return std::max(r, std::abs(sim_.Rate(var, t0)));
+    });
+    return r;
   };
   double v2 = 0, q2 = 0, qmin2 = kInf;
   for (int a = 0; a < 3; ++a) v2 += std::pow(rate_max(m.first_var + physics::kX + a), 2);
@@ -363,18 +351,10 @@ bool CollisionMonitor::CheckEpoch() {
         continue;
       }
       const int var = m.first_var + physics::kX + a;
-      const Waveform& w = sim_.component(sim_.component_of(var)).waveform();
-      const int i = sim_.local_index(var);
-      double l = sim_.Value(var, e0), h = l;
-      for (int k = w.KeepIndex(e0); k + 1 < w.size() && w.time(k) < e1; ++k) {
-        const double dt = w.time(k + 1) - w.time(k);
-        if (dt <= 0) continue;
-        const Cubic p = HermiteCubic(w.x(k)[i], w.f(k)[i], w.x(k + 1)[i], w.f(k + 1)[i], dt);
-        ValueRange(p, std::max(0.0, (e0 - w.time(k)) / dt), std::min(1.0, (e1 - w.time(k)) / dt),
-                   l, h);
-      }
-      lo[a] = l;
-      hi[a] = h;
+      lo[a] = hi[a] = sim_.Value(var, e0);
+      ForEachSegment(var, e0, e1, [&](const Cubic& p, double s0, double s1, double) {
+        ValueRange(p, s0, s1, lo[a], hi[a]);
+      });
     }
     const Eigen::Vector3d r = Eigen::Vector3d::Constant(info.radius + separation_);
     broad.Add(static_cast<int>(b), lo - r, hi + r);
@@ -404,17 +384,11 @@ double CollisionMonitor::AccelBound(int body, double t0, double t1) const {
   if (m.first_var < 0) return 0.0;
   double sum2 = 0;
   for (int axis = 0; axis < 3; ++axis) {
-    const int var = m.first_var + physics::kX + axis;
-    const Waveform& w = sim_.component(sim_.component_of(var)).waveform();
-    const int i = sim_.local_index(var);
     double amax = 0;
-    for (int k = w.KeepIndex(t0); k + 1 < w.size() && w.time(k) < t1; ++k) {
-      const double h = w.time(k + 1) - w.time(k);
-      if (h <= 0) continue;
-      const Cubic p = HermiteCubic(w.x(k)[i], w.f(k)[i], w.x(k + 1)[i], w.f(k + 1)[i], h);
-      amax = std::max(amax, AccelMax(p, std::max(0.0, (t0 - w.time(k)) / h),
-                                     std::min(1.0, (t1 - w.time(k)) / h), h));
-    }
+    ForEachSegment(m.first_var + physics::kX + axis, t0, t1,
+                   [&](const Cubic& p, double s0, double s1, double h) {
+                     amax = std::max(amax, AccelMax(p, s0, s1, h));
+                   });
     sum2 += amax * amax;
   }
   return std::sqrt(sum2);

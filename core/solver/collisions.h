@@ -104,7 +104,8 @@ class CollisionMonitor {
   double AccelBound(int body, double t0, double t1) const;
   collide::Pose PoseAt(int body, double t) const;
   bool Prescribed(int body, double t) const;
-  double MaxAbs(int var, double t0, double t1) const;
+  template <typename F>
+  void ForEachSegment(int var, double t0, double t1, F&& f) const;
   double EpochStart(long k) const;
 
   Simulation& sim_;
