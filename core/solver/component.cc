@@ -18,7 +18,9 @@ const double kD = 1.0 - 1.0 / std::sqrt(2.0);  // = γ/2 = (1−γ)/(2−γ)
 const double kBdfY = 1.0 / (kGamma * (2.0 - kGamma));
 const double kBdfX = (1.0 - kGamma) * (1.0 - kGamma) / (kGamma * (2.0 - kGamma));
 const double kErrC = (-3 * kGamma * kGamma + 4 * kGamma - 2) / (12 * (2 - kGamma));
-constexpr double kNewtonTol = 1e-3;
+// Newton stops when the estimated remaining error, ‖Δ‖ ρ/(1−ρ) with ρ the
+// observed contraction rate, is below this fraction of the tolerance.
+constexpr double kNewtonTol = 0.02;
 constexpr int kNewtonMaxIter = 10;
 constexpr double kStiffness = 3.0;
 
@@ -304,9 +306,14 @@ bool Component::Newton(Mode& m, double t_new, double a, const double* c, double*
     m.solver->Solve(r_.data());
     for (size_t j = 0; j < n; ++j) y[j] += r_[j];
     const double norm = WeightedNorm(r_.data(), x, y);
-    if (!std::isfinite(norm) || (it >= 2 && norm > 0.9 * prev)) break;
+    if (!std::isfinite(norm)) break;
+    // The first update has no rate yet: ask more of it.
+    const double rate = it == 0 ? 0.0 : norm / prev;
+    if (it >= 1 && rate > 0.9) break;
     prev = norm;
-    if (norm <= kNewtonTol) {
+    const bool converged =
+        it == 0 ? norm <= 0.1 * kNewtonTol : norm * rate / (1.0 - rate) <= kNewtonTol;
+    if (converged || norm == 0.0) {
       EvalF(m, t_new, y, fy, Side::kLeft, landing);
       return std::all_of(fy, fy + n, [](double v) { return std::isfinite(v); });
     }

@@ -17,8 +17,9 @@
 //
 // Newton: the iteration matrix M = I − a J is built from the symbolic
 // Jacobian at the start of the step and factored once per step size (dense LU
-// or KLU, see linear_solver.h); iterations stop when the weighted update is
-// below 10⁻³ of the tolerance.
+// or KLU, see linear_solver.h); iterations stop when the remaining error,
+// estimated from the contraction rate ρ as ‖Δ‖ρ/(1−ρ), is below 2% of the
+// tolerance (the first update, which has no rate, must be below 0.2%).
 //
 // Error control: weights w = atol + rtol·max(|x|, |y|), max norm.
 //   TR:      LTE ≈ h³/6 · f[t₋₁, t₀, t₁]   (second divided difference of f)
