@@ -1,0 +1,437 @@
+#!/usr/bin/env python3
+"""Turns asgard_bench's CSV files into SVG plots and docs/benchmarks.md.
+
+usage: bench/report.py OUT_DIR DOC_PATH   (standard library only)
+"""
+import csv
+import math
+import os
+import platform
+import subprocess
+import sys
+
+COLORS = ["#d62728", "#1f77b4", "#2ca02c", "#ff7f0e", "#9467bd", "#8c564b", "#e377c2",
+          "#7f7f7f", "#17becf", "#bcbd22"]
+
+
+def read(path):
+    if not os.path.exists(path):
+        return []
+    with open(path) as f:
+        return list(csv.DictReader(f))
+
+
+def num(s):
+    try:
+        v = float(s)
+        return v if math.isfinite(v) else None
+    except (TypeError, ValueError):
+        return None
+
+
+def fmt(v, digits=3):
+    if v is None:
+        return "—"
+    return f"{v:.{digits}g}"
+
+
+class Plot:
+    """A minimal SVG line plot with optional log axes."""
+
+    def __init__(self, title, xlabel, ylabel, logx=True, logy=True, w=640, h=420):
+        self.title, self.xlabel, self.ylabel = title, xlabel, ylabel
+        self.logx, self.logy, self.w, self.h = logx, logy, w, h
+        self.series = []
+        self.hlines = []
+
+    def add(self, name, pts, dashed=False):
+        pts = [(x, y) for x, y in pts if x is not None and y is not None and
+               (not self.logx or x > 0) and (not self.logy or y > 0)]
+        if pts:
+            self.series.append((name, pts, dashed))
+
+    def save(self, path):
+        L, R, T, B = 70, 190, 30, 50
+        allp = [p for _, pts, _ in self.series for p in pts]
+        if not allp:
+            return False
+        tx = (lambda v: math.log10(v)) if self.logx else (lambda v: v)
+        ty = (lambda v: math.log10(v)) if self.logy else (lambda v: v)
+        xs = [tx(x) for x, _ in allp]
+        ys = [ty(y) for _, y in allp]
+        x0, x1, y0, y1 = min(xs), max(xs), min(ys), max(ys)
+        if self.logx:
+            x0, x1 = math.floor(x0), math.ceil(x1)
+        if self.logy:
+            y0, y1 = math.floor(y0), math.ceil(y1)
+        if x1 == x0:
+            x1 = x0 + 1
+        if y1 == y0:
+            y1 = y0 + 1
+        if not self.logy:
+            y0 = min(0, y0)
+        pw, ph = self.w - L - R, self.h - T - B
+        X = lambda v: L + (tx(v) - x0) / (x1 - x0) * pw
+        Y = lambda v: T + ph - (ty(v) - y0) / (y1 - y0) * ph
+        o = [f'<svg xmlns="http://www.w3.org/2000/svg" width="{self.w}" height="{self.h}" '
+             f'font-family="sans-serif" font-size="11">',
+             f'<rect width="{self.w}" height="{self.h}" fill="white"/>',
+             f'<text x="{L}" y="18" font-size="13">{self.title}</text>',
+             f'<rect x="{L}" y="{T}" width="{pw}" height="{ph}" fill="none" stroke="black"/>']
+
+        def ticks(lo, hi, log):
+            if log:
+                return [10 ** k for k in range(int(lo), int(hi) + 1)]
+            step = 10 ** math.floor(math.log10((hi - lo) / 5 or 1))
+            while (hi - lo) / step > 8:
+                step *= 2
+            k = math.ceil(lo / step)
+            out = []
+            while k * step <= hi + 1e-12:
+                out.append(k * step)
+                k += 1
+            return out
+        for v in ticks(x0, x1, self.logx):
+            x = X(v)
+            o.append(f'<line x1="{x:.1f}" y1="{T}" x2="{x:.1f}" y2="{T+ph}" stroke="#ddd"/>')
+            o.append(f'<text x="{x:.1f}" y="{T+ph+14}" text-anchor="middle">{v:g}</text>')
+        for v in ticks(y0, y1, self.logy):
+            y = Y(v)
+            o.append(f'<line x1="{L}" y1="{y:.1f}" x2="{L+pw}" y2="{y:.1f}" stroke="#ddd"/>')
+            o.append(f'<text x="{L-4}" y="{y+4:.1f}" text-anchor="end">{v:g}</text>')
+        o.append(f'<text x="{L+pw/2}" y="{self.h-12}" text-anchor="middle">{self.xlabel}</text>')
+        o.append(f'<text x="14" y="{T+ph/2}" transform="rotate(-90 14 {T+ph/2})" '
+                 f'text-anchor="middle">{self.ylabel}</text>')
+        for i, (name, pts, dashed) in enumerate(self.series):
+            c = COLORS[i % len(COLORS)]
+            pts = sorted(pts)
+            d = " ".join(f"{X(x):.1f},{Y(y):.1f}" for x, y in pts)
+            dash = ' stroke-dasharray="5,3"' if dashed else ""
+            wdt = 2.5 if name.startswith("asgard") else 1.3
+            o.append(f'<polyline points="{d}" fill="none" stroke="{c}" stroke-width="{wdt}"{dash}/>')
+            for x, y in pts:
+                o.append(f'<circle cx="{X(x):.1f}" cy="{Y(y):.1f}" r="2.5" fill="{c}"/>')
+            ly = T + 12 + 15 * i
+            o.append(f'<line x1="{L+pw+10}" y1="{ly-4}" x2="{L+pw+28}" y2="{ly-4}" stroke="{c}" '
+                     f'stroke-width="2"{dash}/>')
+            o.append(f'<text x="{L+pw+32}" y="{ly}">{name}</text>')
+        o.append("</svg>")
+        with open(path, "w") as f:
+            f.write("\n".join(o))
+        return True
+
+
+def pareto(points):
+    """Lower-left frontier of (error, cpu): for decreasing error, increasing time."""
+    pts = sorted(p for p in points if p[0] is not None and p[1] is not None and p[0] > 0)
+    front, best = [], math.inf
+    for e, c in sorted(pts, key=lambda p: p[1]):
+        if e < best:
+            front.append((e, c))
+            best = e
+    return front
+
+
+def cost_at(front, err):
+    """CPU time needed to reach `err` (log–log interpolation on the frontier);
+    None when the code never gets that accurate."""
+    if not front:
+        return None
+    pts = sorted(front)  # ascending error
+    if err < pts[0][0]:
+        return None
+    cand = [c for e, c in pts if e <= err]
+    best = min(cand)
+    for (ea, ca), (eb, cb) in zip(pts, pts[1:]):
+        if ea <= err <= eb and ea > 0 and eb > ea:
+            f = (math.log(err) - math.log(ea)) / (math.log(eb) - math.log(ea))
+            best = min(best, math.exp(math.log(ca) + f * (math.log(cb) - math.log(ca))))
+    return best
+
+
+def machine():
+    lines = []
+    try:
+        out = subprocess.run(["lscpu"], capture_output=True, text=True).stdout
+        for l in out.splitlines():
+            if l.split(":")[0].strip() in ("Model name", "CPU(s)", "Thread(s) per core",
+                                           "CPU max MHz", "L2 cache", "L3 cache", "Architecture"):
+                lines.append(l.strip())
+    except OSError:
+        pass
+    try:
+        cc = subprocess.run(["c++", "--version"], capture_output=True, text=True).stdout
+        lines.append("Compiler: " + cc.splitlines()[0])
+    except (OSError, IndexError):
+        pass
+    lines.append("Kernel: " + platform.platform())
+    try:
+        mem = open("/proc/meminfo").readline().split()
+        lines.append(f"Memory: {int(mem[1]) / 2**20:.1f} GiB")
+    except OSError:
+        pass
+    return lines
+
+
+def main():
+    out, doc = sys.argv[1], sys.argv[2]
+    plots = os.path.join(out, "plots")
+    os.makedirs(plots, exist_ok=True)
+    rel = os.path.relpath(plots, os.path.dirname(os.path.abspath(doc)))
+    md = ["# Benchmarks", "",
+          "Generated by `scripts/bench.sh` (bench/report.py) from the CSV files in "
+          f"`{os.path.relpath(out, os.path.dirname(os.path.abspath(doc)))}/`. "
+          "Do not edit by hand.", ""]
+    mode = open(os.path.join(out, "mode.txt")).read().strip() if os.path.exists(
+        os.path.join(out, "mode.txt")) else "?"
+    md += ["## Machine", "", "```"] + machine() + [f"Run: {mode}", "```", "",
+           "Peers built:", ""]
+    if os.path.exists(os.path.join(out, "peers.txt")):
+        md += ["- " + l.strip() for l in open(os.path.join(out, "peers.txt")) if l.strip()]
+    md += ["",
+           "Timing: Asgard's time is the solver phase as `app::Simulate` measures it "
+           "(simulation set-up and run, wall clock of a single thread; scene evaluation and "
+           "equation forming are excluded); peers' time is thread CPU time of set-up plus "
+           "integration. Each point is the median of up to 5 runs (fewer when one run is long; "
+           "column `runs`). The machine has 2 cores shared with other work, so small times "
+           "carry noise.", ""]
+
+    # ---- work–precision --------------------------------------------------
+    wp = read(os.path.join(out, "workprec.csv"))
+    refs = {r["scene"]: r for r in read(os.path.join(out, "references.csv"))}
+    md += ["## Work–precision", "",
+           "Error metric (the same for every code): the maximum over 30 Hz frames and bodies of "
+           "|position error| + rotation angle × body radius, divided by the scene size. "
+           "Adaptive codes sweep rtol = atol = 1e-1 … 1e-8; fixed-step engines sweep "
+           "h = (1/30 s)/m ≈ 1.1e-2 … 1.1e-5. Asgard, CVODE, ARKODE and odeint integrate "
+           "*the same equations* (Asgard's, with its symbolic Jacobian, compiled to tapes), "
+           "measured against the reference below. MuJoCo, Bullet and ODE simulate *the same "
+           "scene* with rigid joints, measured against the rigid model's exact solution "
+           "(pendulum: elliptic closed form; chains: RK4 at h = 2e-5 in joint angles). Asgard's "
+           "links are stiff critically damped springs, so its scene differs from the rigid one "
+           "by the model difference listed (Asgard's error against the rigid model is in "
+           "column `error_rigid` of workprec.csv).", "",
+           "| scene | reference | cross-check (difference) | rigid model | Asgard model vs rigid |",
+           "|---|---|---|---|---|"]
+    for s, r in refs.items():
+        md.append(f"| {s} | {r['reference']} | {r['cross_check']} ({fmt(num(r['cross_check_difference']))}) "
+                  f"| {r['rigid_reference'] or '—'} | {fmt(num(r['model_difference']))} |")
+    md.append("")
+    scenes = []
+    for r in wp:
+        if r["scene"] not in scenes:
+            scenes.append(r["scene"])
+    target_rows = []
+    for s in scenes:
+        rows = [r for r in wp if r["scene"] == s]
+        codes = []
+        for r in rows:
+            if r["code"] not in codes:
+                codes.append(r["code"])
+        p = Plot(f"Work–precision: {s}", "achieved error (common metric)", "CPU time [s]")
+        fronts = {}
+        for c in codes:
+            pts = [(num(r["error"]), num(r["cpu"])) for r in rows if r["code"] == c and r["status"] == "ok"]
+            p.add(c, pts, dashed=any(r["kind"] == "fixed" for r in rows if r["code"] == c))
+            fronts[c] = pareto(pts)
+        if p.save(os.path.join(plots, f"workprec_{s}.svg")):
+            md += [f"![{s}]({rel}/workprec_{s}.svg)", ""]
+        # table
+        md += [f"### {s}", "", "| code | param | error | CPU [s] | steps | rejected | RHS | Jac | LU | status |",
+               "|---|---|---|---|---|---|---|---|---|---|"]
+        for r in rows:
+            md.append(f"| {r['code']} | {r['param']} | {fmt(num(r['error']))} | {fmt(num(r['cpu']))} | "
+                      f"{r['steps']} | {r['rejected']} | {r['rhs']} | {r['jac']} | {r['factorizations']} | {r['status']} |")
+        md.append("")
+        # target: our time ≤ best peer's at every achieved error 1e-2 … 1e-6
+        for e in (1e-2, 1e-3, 1e-4, 1e-5, 1e-6):
+            ours = cost_at(fronts.get("asgard", []), e)
+            peers = {c: cost_at(f, e) for c, f in fronts.items() if c != "asgard"}
+            peers = {c: v for c, v in peers.items() if v is not None}
+            best = min(peers.items(), key=lambda kv: kv[1]) if peers else None
+            if ours is None and best is None:
+                continue
+            met = ours is not None and (best is None or ours <= best[1])
+            target_rows.append((s, e, ours, best, met))
+
+    md += ["### Target: at every achieved error 1e-2 … 1e-6, Asgard's CPU time ≤ the best peer's", "",
+           "Times read off each code's work–precision frontier by log–log interpolation "
+           "(— : the code never reached that error).", "",
+           "| scene | error | Asgard [s] | best peer | its time [s] | ratio | met |",
+           "|---|---|---|---|---|---|---|"]
+    for s, e, ours, best, met in target_rows:
+        ratio = ours / best[1] if ours is not None and best else None
+        md.append(f"| {s} | {e:g} | {fmt(ours)} | {best[0] if best else '—'} | {fmt(best[1] if best else None)} | "
+                  f"{fmt(ratio)} | {'yes' if met else '**no**'} |")
+    n_met = sum(1 for t in target_rows if t[4])
+    md += ["", f"**Met at {n_met} of {len(target_rows)} (scene, error) points.**"
+           + (" The target is missed where marked." if n_met < len(target_rows) else ""), ""]
+
+    # ---- stiff sweep -----------------------------------------------------
+    st = read(os.path.join(out, "stiff.csv"))
+    if st:
+        md += ["## Stiff links, ω0 = 1e2 … 1e6", "",
+               "A ball on a critically damped link to the moving point (sin t, 0, 0); closed-form "
+               "solution. Target: Asgard's steps and time flat within 2× across ω0, and at most "
+               "half of CVODE's time (compared at equal achieved error, 1e-5, by interpolation "
+               "over the tolerance sweep).", ""]
+        ws = sorted({num(r["omega0"]) for r in st})
+        p = Plot("Stiff link: CPU time at achieved error 1e-5", "ω0 [rad/s]", "CPU time [s]")
+        p2 = Plot("Stiff link: steps at rtol = 1e-6", "ω0 [rad/s]", "steps")
+        table = ["| ω0 | Asgard steps (tol 1e-6) | CVODE steps (tol 1e-6) | Asgard time @1e-5 | CVODE time @1e-5 | ratio |",
+                 "|---|---|---|---|---|---|"]
+        series = {"asgard": [], "cvode_bdf_klu": []}
+        steps = {"asgard": [], "cvode_bdf_klu": []}
+        for w in ws:
+            row = [fmt(w)]
+            cost = {}
+            for c in ("asgard", "cvode_bdf_klu"):
+                rs = [r for r in st if num(r["omega0"]) == w and r["code"] == c and r["status"] == "ok"]
+                f = pareto([(num(r["error"]), num(r["cpu"])) for r in rs])
+                cost[c] = cost_at(f, 1e-5)
+                series[c].append((w, cost[c]))
+                s6 = [num(r["steps"]) for r in rs if num(r["tol"]) == 1e-6]
+                steps[c].append((w, s6[0] if s6 else None))
+            table.append(f"| {fmt(w)} | {fmt(steps['asgard'][-1][1])} | {fmt(steps['cvode_bdf_klu'][-1][1])} | "
+                         f"{fmt(cost['asgard'])} | {fmt(cost['cvode_bdf_klu'])} | "
+                         f"{fmt(cost['asgard'] / cost['cvode_bdf_klu'] if cost['asgard'] and cost['cvode_bdf_klu'] else None)} |")
+        for c in series:
+            p.add(c, series[c])
+            p2.add(c, steps[c])
+        p.save(os.path.join(plots, "stiff_time.svg"))
+        p2.save(os.path.join(plots, "stiff_steps.svg"))
+        md += [f"![stiff time]({rel}/stiff_time.svg) ![stiff steps]({rel}/stiff_steps.svg)", ""] + table + [""]
+        a_steps = [v for _, v in steps["asgard"] if v]
+        a_cost = [v for _, v in series["asgard"] if v]
+        flat_s = max(a_steps) / min(a_steps) if a_steps else None
+        flat_t = max(a_cost) / min(a_cost) if a_cost else None
+        ratios = [a / c for (_, a), (_, c) in zip(series["asgard"], series["cvode_bdf_klu"]) if a and c]
+        md += [f"- Steps flat within 2×: max/min = {fmt(flat_s)} → **{'met' if flat_s and flat_s <= 2 else 'missed'}**",
+               f"- Time flat within 2×: max/min = {fmt(flat_t)} → **{'met' if flat_t and flat_t <= 2 else 'missed'}**",
+               f"- At most half of CVODE's time: worst ratio = {fmt(max(ratios) if ratios else None)} → "
+               f"**{'met' if ratios and max(ratios) <= 0.5 else 'missed'}**", ""]
+
+    # ---- Figure 5.7 ------------------------------------------------------
+    f57 = read(os.path.join(out, "fig57.csv"))
+    if f57:
+        md += ["## Seed Figure 5.7: time-constant ratio", "",
+               "Five pendulums for 10 s; one has gravity and link stiffness × r², so it swings r "
+               "times faster. Solver time against r: all five as one component, partitioned, and "
+               "the sum of each pendulum simulated alone. Target: partitioned ≤ 1.2 × sum alone at "
+               "every ratio up to 1000.", ""]
+        p = Plot("Figure 5.7: run time against time-constant ratio", "time-constant ratio r", "solver time [s]")
+        for v in ("one_component", "partitioned", "sum_alone"):
+            p.add(v, [(num(r["ratio"]), num(r["cpu"])) for r in f57 if r["variant"] == v])
+        p.save(os.path.join(plots, "fig57.svg"))
+        md += [f"![fig57]({rel}/fig57.svg)", "", "| ratio | one component [s] | partitioned [s] | sum alone [s] | partitioned / sum | met |",
+               "|---|---|---|---|---|---|"]
+        allmet = True
+        for r_ in sorted({num(r["ratio"]) for r in f57}):
+            g = {r["variant"]: r for r in f57 if num(r["ratio"]) == r_}
+            pc, sc = num(g["partitioned"]["cpu"]), num(g["sum_alone"]["cpu"])
+            q = pc / sc if pc and sc else None
+            met = q is not None and q <= 1.2
+            allmet &= met
+            md.append(f"| {fmt(r_)} | {fmt(num(g['one_component']['cpu']))} ({g['one_component']['status']}) | {fmt(pc)} | {fmt(sc)} | {fmt(q)} | {'yes' if met else '**no**'} |")
+        md += ["", f"**Target {'met' if allmet else 'missed'}.**", ""]
+
+    # ---- Figure 5.11 -----------------------------------------------------
+    f511 = read(os.path.join(out, "fig511.csv"))
+    if f511:
+        md += ["## Seed Figure 5.11: the five algorithm variants", "",
+               "Two pendulums (bobs of mass 5) and a light ball that hits A, then B, then A again "
+               "(3 impacts), plus N idle pendulums elsewhere, 5 s. Variants of seed 5.2.4: "
+               "1 no collisions, one component; 2 no collisions, partitioned; 3 collisions, one "
+               "component; 4 collisions, partitioned, event-driven; 5 collisions, partitioned, "
+               "sequential (no event-driven scheduling). Targets: cost linear in N; variant 4 ≥ 50× "
+               "faster than variant 3 at N = 1000.", ""]
+        p = Plot("Figure 5.11: run time against number of objects", "objects", "solver time [s]")
+        variants = []
+        for r in f511:
+            if r["variant"] not in variants:
+                variants.append(r["variant"])
+        for v in variants:
+            p.add(v, [(num(r["objects"]), num(r["cpu"])) for r in f511 if r["variant"] == v and r["status"] == "ok"])
+        p.save(os.path.join(plots, "fig511.svg"))
+        ns = sorted({int(r["idle"]) for r in f511})
+        md += [f"![fig511]({rel}/fig511.svg)", "",
+               "| N idle | " + " | ".join(variants) + " |", "|---|" + "---|" * len(variants)]
+        for n in ns:
+            cells = []
+            for v in variants:
+                r = next((r for r in f511 if int(r["idle"]) == n and r["variant"] == v), None)
+                if r is None:
+                    cells.append("—")
+                elif r["status"] == "ok":
+                    cells.append(f"{fmt(num(r['cpu']))} s ({r['impacts']} imp.)")
+                else:
+                    cells.append(r["status"])
+            md.append(f"| {n} | " + " | ".join(cells) + " |")
+        md.append("")
+        v4 = {int(r["idle"]): num(r["cpu"]) for r in f511 if r["variant"].startswith("4_") and r["status"] == "ok"}
+        v3 = {int(r["idle"]): (num(r["cpu"]), r["status"]) for r in f511 if r["variant"].startswith("3_")}
+        big = max(v4) if v4 else None
+        if big and len(v4) >= 2:
+            small = sorted(k for k in v4 if k > 0)
+            if small:
+                per_small = v4[small[0]] / (small[0] + 3)
+                per_big = v4[big] / (big + 3)
+                md.append(f"- Linearity (variant 4): time per object {fmt(per_small)} s at N = {small[0]}, "
+                          f"{fmt(per_big)} s at N = {big} (ratio {fmt(per_big / per_small)}; 1 = linear) → "
+                          f"**{'met' if per_big / per_small <= 1.5 else 'missed'}** (taken as met within 1.5×).")
+        if big is not None and big in v3:
+            c3, s3 = v3[big]
+            if c3:
+                sp = c3 / v4[big]
+                md.append(f"- Speed-up of variant 4 over variant 3 at N = {big}: {fmt(sp)}× → **{'met' if sp >= 50 and big >= 1000 else 'missed'}**"
+                          + ("" if big >= 1000 else f" (N = 1000 was not run; largest N {big})"))
+            else:
+                md.append(f"- Variant 3 at N = {big}: {s3} (time limit), so the speed-up is > limit / {fmt(v4[big])} s.")
+        md.append("")
+
+    # ---- skip ------------------------------------------------------------
+    sk = read(os.path.join(out, "skip.csv"))
+    if sk:
+        md += ["## Skip what a scene doesn't need", ""]
+        g = {r["variant"]: r for r in sk}
+        a = num(g.get("active_alone", {}).get("cpu"))
+        w = num(g.get("active_plus_99_idle", {}).get("cpu"))
+        o = num(g.get("active_plus_99_idle_one_component", {}).get("cpu"))
+        md += ["One active subsystem (the double pendulum, 10 s) plus 99 independent idle pendulums "
+               "hanging at rest, against the active subsystem alone.", "",
+               "| run | solver time [s] | steps | components |", "|---|---|---|---|"]
+        for k in ("active_alone", "active_plus_99_idle", "active_plus_99_idle_one_component"):
+            if k in g:
+                md.append(f"| {k} | {fmt(num(g[k]['cpu']))} | {g[k]['steps']} | {g[k]['components']} |")
+        md += ["", f"- Cost of the 99 idle subsystems: {fmt(w / a if a and w else None)}× the active one alone "
+               f"(one component: {fmt(o / a if a and o else None)}×).", ""]
+        e = g.get("resimulate_vs_scratch")
+        if e:
+            md += [f"- **Editing one object of 1000 (target ≤ 2% of a full run): not measured** — {e['error']}.", ""]
+
+    # ---- stress ----------------------------------------------------------
+    ss = read(os.path.join(out, "stress.csv"))
+    if ss:
+        md += ["## Stress suite", "",
+               "Each case runs in a child process with a time limit. Status: pass (meets the limit), "
+               "miss (does not), reported (the solver stopped with an error naming time and "
+               "component), nan (a NaN reached the output silently — a bug), timeout, crash.", "",
+               "| case | metric | value | limit | status | wall [s] | detail |", "|---|---|---|---|---|---|---|"]
+        for r in ss:
+            st_ = r["status"] if r["status"] == "pass" else f"**{r['status']}**"
+            md.append(f"| {r['case']} | {r['metric']} | {r['value']} | {r['limit']} | {st_} | {fmt(num(r['wall']))} | {r['detail']} |")
+        md.append("")
+        en = read(os.path.join(out, "energy.csv"))
+        if en:
+            p = Plot("Relative energy drift", "t [s]", "|E(t) − E(0)| / |E(0)|", logx=False)
+            for c in sorted({r["case"] for r in en}):
+                p.add(c, [(num(r["t"]), num(r["relative_drift"])) for r in en if r["case"] == c])
+            p.save(os.path.join(plots, "energy.svg"))
+            md += [f"![energy]({rel}/energy.svg)", ""]
+
+    with open(doc, "w") as f:
+        f.write("\n".join(md) + "\n")
+
+
+if __name__ == "__main__":
+    main()
