@@ -55,7 +55,7 @@ double MedianCpu(const Config& cfg, const std::function<double()>& once, double 
                  double* runs) {
   std::vector<double> cpu{first};
   double spent = first;
-  while (static_cast<int>(cpu.size()) < cfg.repeats && spent < (cfg.quick ? 10.0 : 60.0)) {
+  while (static_cast<int>(cpu.size()) < cfg.repeats && spent < (cfg.quick ? 5.0 : 15.0)) {
     cpu.push_back(once());
     spent += cpu.back();
   }
