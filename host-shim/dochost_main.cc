@@ -1,0 +1,476 @@
+// dochost: the document host on the command line.
+//
+//   dochost convert IN -o OUT.{pdf,png,html,xml,ens}
+//   dochost verb IN VERB [ARGS] [-o OUT]       (host verbs of seed 6.2.4)
+//
+// Design: both commands load the document, find its embedded subdocuments and
+// their media (host_document.h), and, when the output needs pictures, start
+// one node per subdocument and simulate it.  A verb changes the view state
+// (time, handles, playing) or the document (recompute: re-simulate and
+// refresh the poster frame), then the same output step writes the result.
+// Like the asgard CLI: usage problems print the help and exit 2; a document
+// that cannot be read or an output that cannot be written exits 1; an
+// animation that fails is a warning and its poster and status are shown.
+#include <unistd.h>
+
+#include <cmath>
+#include <cstdio>
+#include <iostream>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "formats/document/file.h"
+#include "formats/document/xml.h"
+#include "host-shim/host_document.h"
+#include "host-shim/html.h"
+#include "host-shim/layout.h"
+
+namespace asgard::host {
+namespace {
+
+const char* const kHelp = R"(Usage: dochost convert IN -o OUT [options]
+       dochost verb IN VERB [ARGS] [options]
+       dochost help
+
+Compound documents with embedded Asgard animations (.ens: the SGML-like
+format of the dissertation's Figure 6.2; .xml: its XML flavour).
+
+convert writes IN as OUT; the extension of OUT chooses the output device:
+  .pdf        pages (A4), text set with Pango, each animation as a frame
+  .png        the same pages as pictures (OUT, OUT-2.png, ...)
+  .html       one self-contained page; each animation plays with play/pause
+              and a seek slider, starting from its poster frame
+  .ens .xml   the document itself, in either flavour (byte-exact)
+
+verb runs a host verb (seed 6.2.4) headless on the first animation (or the
+one given with --animation N), then writes the result to -o OUT (any of the
+formats above; for recompute without -o, IN itself is rewritten):
+  play [--from T] [--to T]   play the animation; with -o PATTERN.png write
+                             every frame of the playback (OUT_0000.png ...)
+  pause [T] | seek T         stop at time T; -o shows the document then
+  recompute                  recompute the motion (re-simulate) and refresh
+                             the animation's poster frame in the document
+  handles on|off             show the position handles in its renditions
+  viewer                     open a viewer: write a page (-o OUT.html) with
+                             the scene text and the player
+  restart                    restart the animation's slave process
+  status                     print every animation's status
+
+Options:
+  -o OUT               output file
+  --animation N        the animation a verb applies to (default 1)
+  --time T             time of the frames on pages and of poster frames
+                       (default: the start of each animation)
+  --handles            show position handles in the pictures
+  --dpi N              resolution of .png pages (default 96)
+  --layout FILE        also write the page layout as JSON
+  --plugin-path DIR    look for medium plugins in DIR first (repeatable;
+                       also $ASGARD_MEDIUM_PATH, colon-separated)
+  --core PATH          the asgard-core slave program (default: beside the
+                       plugin, or $ASGARD_CORE)
+  --timeout S          watchdog: longest silence from a slave (default 60)
+  --quiet              no messages or progress bar
+  -h, --help           this help
+
+Exit status 0 on success, 1 when IN cannot be read, OUT cannot be written or
+a verb fails, 2 on bad usage.
+)";
+
+struct Options {
+  std::string command, in, out, verb, layout;
+  std::vector<std::string> verb_args, plugin_path;
+  std::string core;
+  std::optional<double> time, from, to;
+  double timeout = 0, dpi = 96;
+  int animation = 1;
+  bool handles = false, quiet = false;
+};
+
+int Usage(const std::string& message) {
+  std::cerr << "dochost: " << message << "\n\n" << kHelp;
+  return 2;
+}
+
+std::string Extension(const std::string& path) {
+  const size_t dot = path.rfind('.'), slash = path.rfind('/');
+  if (dot == std::string::npos || (slash != std::string::npos && dot < slash)) return "";
+  std::string e = path.substr(dot + 1);
+  for (char& c : e) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  return e;
+}
+
+bool Number(const std::string& s, double& v) {
+  char* end = nullptr;
+  v = std::strtod(s.c_str(), &end);
+  return !s.empty() && end && *end == '\0' && std::isfinite(v);
+}
+
+// Returns an exit status when parsing ends the program (help, usage).
+std::optional<int> Parse(const std::vector<std::string>& args, Options& o) {
+  for (size_t i = 0; i < args.size(); ++i) {
+    const std::string& a = args[i];
+    auto value = [&]() -> std::optional<std::string> {
+      if (i + 1 >= args.size()) return std::nullopt;
+      return args[++i];
+    };
+    auto number = [&](double& out) {
+      auto v = value();
+      return v && Number(*v, out);
+    };
+    double d = 0;
+    if (a == "-h" || a == "--help") {
+      std::cout << kHelp;
+      return 0;
+    } else if (a == "-o") {
+      auto v = value();
+      if (!v || v->empty()) return Usage("-o needs a file name");
+      o.out = *v;
+    } else if (a == "--time" || a == "--from" || a == "--to") {
+      if (!number(d)) return Usage(a + " needs a number");
+      (a == "--time" ? o.time : a == "--from" ? o.from : o.to) = d;
+    } else if (a == "--timeout") {
+      if (!number(d) || d <= 0) return Usage("--timeout needs a positive number of seconds");
+      o.timeout = d;
+    } else if (a == "--dpi") {
+      if (!number(d) || d < 10 || d > 1200) return Usage("--dpi needs a number from 10 to 1200");
+      o.dpi = d;
+    } else if (a == "--animation") {
+      if (!number(d) || d < 1 || d != std::floor(d)) return Usage("--animation needs N >= 1");
+      o.animation = static_cast<int>(d);
+    } else if (a == "--layout" || a == "--plugin-path" || a == "--core") {
+      auto v = value();
+      if (!v || v->empty()) return Usage(a + " needs a value");
+      if (a == "--layout") o.layout = *v;
+      if (a == "--plugin-path") o.plugin_path.push_back(*v);
+      if (a == "--core") o.core = *v;
+    } else if (a == "--handles") {
+      o.handles = true;
+    } else if (a == "--quiet") {
+      o.quiet = true;
+    } else if (a.size() > 1 && a[0] == '-' &&
+               !(std::isdigit(static_cast<unsigned char>(a[1])) || a[1] == '.')) {
+      return Usage("unknown option '" + a + "'");
+    } else if (o.command.empty()) {
+      o.command = a;
+    } else if (o.in.empty()) {
+      o.in = a;
+    } else if (o.command == "verb" && o.verb.empty()) {
+      o.verb = a;
+    } else if (o.command == "verb") {
+      o.verb_args.push_back(a);
+    } else {
+      return Usage("unexpected argument '" + a + "'");
+    }
+  }
+  if (o.command == "help" || o.command.empty()) {
+    std::cout << kHelp;
+    return o.command.empty() ? 2 : 0;
+  }
+  if (o.command != "convert" && o.command != "verb")
+    return Usage("unknown command '" + o.command + "'");
+  if (o.in.empty()) return Usage(o.command + ": IN is required");
+  if (o.command == "convert" && o.out.empty()) return Usage("convert: -o OUT is required");
+  if (o.command == "verb" && o.verb.empty()) return Usage("verb: VERB is required");
+  return std::nullopt;
+}
+
+class ProgressBar {
+ public:
+  explicit ProgressBar(bool enabled) : enabled_(enabled) {}
+  void operator()(const Embedded& item, double f) {
+    if (!enabled_) return;
+    const int filled = static_cast<int>(std::lround(std::clamp(f, 0.0, 1.0) * 30));
+    std::fprintf(stderr, "\r[%s%s] simulating animation %d %3.0f%%",
+                 std::string(filled, '#').c_str(), std::string(30 - filled, '.').c_str(),
+                 item.index, f * 100);
+    if (f >= 1) std::fprintf(stderr, "\n");
+    std::fflush(stderr);
+  }
+
+ private:
+  bool enabled_;
+};
+
+struct Host {
+  Options o;
+  std::unique_ptr<MediumRegistry> registry;
+  std::unique_ptr<HostDocument> doc;
+
+  void Warn(const std::string& m) const {
+    if (!o.quiet) std::cerr << "dochost: " << m << "\n";
+  }
+  void Report(const Embedded& item) const {
+    Warn(o.in + ": animation " + std::to_string(item.index) + ": " + item.message);
+  }
+  void SimulateAll() {
+    for (Embedded& item : doc->items())
+      if (item.medium && !item.simulated && !doc->Simulate(item)) Report(item);
+  }
+  double TimeFor(const Embedded& item) const {
+    return std::clamp(o.time.value_or(item.t0), item.t0, std::max(item.t0, item.t1));
+  }
+  std::string Caption(const Embedded& item, bool live, double t) const {
+    char buf[200];
+    if (live) {
+      std::snprintf(buf, sizeof buf, "Animation %d · %s · frame at t = %.2f s", item.index,
+                    item.message.c_str(), t);
+      return buf;
+    }
+    std::string s = "Animation " + std::to_string(item.index) + " · " + item.message;
+    if (!item.poster.empty()) s += " · showing the last poster frame";
+    return s;
+  }
+  uint32_t Flags() const {
+    return o.handles ? static_cast<uint32_t>(ASGARD_RENDITION_HANDLES) : 0u;
+  }
+
+  std::vector<RegionContent> Regions() {
+    std::vector<RegionContent> regions;
+    for (Embedded& item : doc->items()) {
+      RegionContent r;
+      bool live = false;
+      const double t = TimeFor(item);
+      if (item.simulated)
+        r.picture = doc->Frame(item, ASGARD_DEVICE_PAGE, item.width * 2, item.height * 2, t,
+                               Flags(), &live);
+      if (r.picture.empty()) r.picture = item.poster;
+      r.caption = Caption(item, live, t);
+      regions.push_back(std::move(r));
+    }
+    return regions;
+  }
+
+  HtmlAnimation Html(Embedded& item) {
+    HtmlAnimation a;
+    a.width = item.width;
+    a.height = item.height;
+    a.scene = item.text;
+    if (item.simulated) {
+      const double rate = std::min(item.frame_rate, 30.0);
+      int n = static_cast<int>(std::floor((item.t1 - item.t0) * rate + 1e-9)) + 1;
+      n = std::clamp(n, 1, 300);
+      const double step = n > 1 ? std::min(1.0 / rate, (item.t1 - item.t0) / (n - 1)) : 0;
+      for (int k = 0; k < n; ++k) a.times.push_back(item.t0 + k * step);
+      if (a.times.back() < item.t1 - 1e-9) a.times.push_back(item.t1);
+      const double poster_t = TimeFor(item);
+      bool all_live = true;
+      for (size_t k = 0; k < a.times.size(); ++k) {
+        bool live = false;
+        const Picture p =
+            doc->Frame(item, ASGARD_DEVICE_HTML, a.width, a.height, a.times[k], Flags(), &live);
+        if (!live) {
+          all_live = false;
+          break;
+        }
+        a.frames.push_back(EncodePng(p));
+        if (a.times[k] <= poster_t + 1e-9) a.poster = static_cast<int>(k);
+      }
+      a.live = all_live;
+    }
+    if (!a.live) {
+      a.frames.clear();
+      a.times.clear();
+      a.poster = 0;
+      if (!item.poster.empty()) {
+        a.frames.push_back(EncodePng(item.poster));
+        a.times.push_back(item.poster.time);
+      }
+    }
+    a.caption = a.live ? "Animation " + std::to_string(item.index) + " · " + item.message
+                       : Caption(item, false, 0);
+    return a;
+  }
+
+  std::string Title() const {
+    const auto blocks = Blocks(*doc);
+    for (const Block& b : blocks)
+      if (b.kind == Block::kTitle || (b.kind == Block::kField && b.label == "Subject"))
+        return b.text;
+    return o.in;
+  }
+
+  int Write(const std::string& out, bool viewer_only = false) {
+    const std::string ext = Extension(out);
+    std::string error;
+    if (ext == "ens" || ext == "xml") {
+      if (!document::SaveDocument(doc->document(), out, &error)) return Fail(error);
+      if (!o.quiet) std::cout << o.in << ": wrote " << out << "\n";
+      return 0;
+    }
+    SimulateAll();
+    if (ext == "html") {
+      std::vector<HtmlAnimation> animations;
+      for (Embedded& item : doc->items()) animations.push_back(Html(item));
+      std::vector<Block> blocks = Blocks(*doc);
+      if (viewer_only) {
+        const int k = o.animation - 1;
+        blocks = {{Block::kTitle, "", "Asgard viewer: animation " + std::to_string(k + 1)},
+                  {Block::kEmbedded, "", "", k}};
+      }
+      const std::string html = WriteHtml(Title(), blocks, animations, viewer_only);
+      if (!document::WriteFileAtomic(out, html, &error)) return Fail(error);
+      if (!o.quiet) std::cout << o.in << ": wrote " << out << "\n";
+      return 0;
+    }
+    if (ext != "pdf" && ext != "png")
+      return Usage("OUT must end in .pdf, .png, .html, .xml or .ens");
+    const auto pages = Paginate(Blocks(*doc), *doc);
+    const auto regions = Regions();
+    std::vector<std::string> written;
+    const bool ok = ext == "pdf" ? WritePdf(out, pages, regions, &error)
+                                 : WritePngPages(out, pages, regions, o.dpi, &written, &error);
+    if (!ok) return Fail(error);
+    if (!o.layout.empty() && !document::WriteFileAtomic(o.layout, LayoutJson(pages), &error))
+      return Fail(error);
+    if (!o.quiet)
+      std::cout << o.in << ": wrote " << pages.size() << (pages.size() == 1 ? " page" : " pages")
+                << " to " << (written.size() > 1 ? written.front() + " …" : out) << "\n";
+    return 0;
+  }
+
+  int Fail(const std::string& message) const {
+    std::cerr << "dochost: " << message << "\n";
+    return 1;
+  }
+};
+
+int RunVerb(Host& h) {
+  Options& o = h.o;
+  auto& items = h.doc->items();
+  if (o.verb == "status") {
+    h.SimulateAll();
+    for (Embedded& item : items)
+      std::cout << "animation " << item.index << " <" << item.element << ">: " << item.message
+                << "\n";
+    return 0;
+  }
+  if (o.animation > static_cast<int>(items.size()))
+    return h.Fail(o.in + " has " + std::to_string(items.size()) + " embedded animation(s), not " +
+                  std::to_string(o.animation));
+  Embedded& item = items[static_cast<size_t>(o.animation - 1)];
+  if (!item.medium)
+    return h.Fail(o.in + ": animation " + std::to_string(item.index) + ": " + item.message);
+  auto need_simulated = [&]() {
+    if (!item.simulated && !h.doc->Simulate(item)) {
+      h.Report(item);
+      return false;
+    }
+    return true;
+  };
+  if (o.verb == "recompute" || o.verb == "restart") {
+    const bool ok = o.verb == "restart" ? h.doc->Restart(item) : h.doc->SetText(item, item.text);
+    if (!ok)
+      return h.Fail(o.in + ": animation " + std::to_string(item.index) + ": " + item.message);
+    bool live = false;
+    const Picture p = h.doc->Frame(item, ASGARD_DEVICE_PAGE, item.width * 2, item.height * 2,
+                                   h.TimeFor(item), h.Flags(), &live);
+    if (live) h.doc->SetPoster(item, p);
+    if (!o.quiet)
+      std::cout << "animation " << item.index << ": recomputed: " << item.message << "\n";
+    return h.Write(o.out.empty() ? o.in : o.out);
+  }
+  if (o.verb == "pause" || o.verb == "seek") {
+    double t = 0;
+    if (o.verb_args.size() > 1 || (o.verb == "seek" && o.verb_args.empty()) ||
+        (!o.verb_args.empty() && !Number(o.verb_args[0], t)))
+      return Usage(o.verb + " takes one time in seconds");
+    if (!o.verb_args.empty()) o.time = t;
+    if (!need_simulated()) return 1;
+    if (!o.quiet)
+      std::cout << "animation " << item.index << ": " << (o.verb == "pause" ? "paused" : "sought")
+                << " at t = " << h.TimeFor(item) << " s\n";
+    return o.out.empty() ? 0 : h.Write(o.out);
+  }
+  if (o.verb == "handles") {
+    if (o.verb_args.size() != 1 || (o.verb_args[0] != "on" && o.verb_args[0] != "off"))
+      return Usage("handles takes on or off");
+    o.handles = o.verb_args[0] == "on";
+    if (!need_simulated()) return 1;
+    std::string reply;
+    if (!h.doc->Command(item, "handles " + o.verb_args[0], &reply)) return h.Fail(item.message);
+    if (!o.quiet) std::cout << "animation " << item.index << ": " << reply << "\n";
+    return o.out.empty() ? 0 : h.Write(o.out);
+  }
+  if (o.verb == "play") {
+    if (!o.verb_args.empty()) return Usage("play takes no arguments (use --from, --to)");
+    if (!need_simulated()) return 1;
+    const double from = std::clamp(o.from.value_or(item.t0), item.t0, item.t1);
+    const double to = std::clamp(o.to.value_or(item.t1), from, item.t1);
+    const int n =
+        std::max(1, static_cast<int>(std::floor((to - from) * item.frame_rate + 1e-9)) + 1);
+    const bool frames = !o.out.empty() && Extension(o.out) == "png";
+    int played = 0;
+    for (int k = 0; k < n; ++k) {
+      const double t = std::min(to, from + k / item.frame_rate);
+      bool live = false;
+      const Picture p =
+          h.doc->Frame(item, ASGARD_DEVICE_SCREEN, item.width, item.height, t, h.Flags(), &live);
+      if (!live)
+        return h.Fail("animation " + std::to_string(item.index) +
+                      ": playback stopped: " + item.message);
+      ++played;
+      if (frames) {
+        char suffix[32];
+        std::snprintf(suffix, sizeof suffix, "_%04d", k);
+        const size_t dot = o.out.rfind('.');
+        std::string error;
+        if (!document::WriteFileAtomic(o.out.substr(0, dot) + suffix + o.out.substr(dot),
+                                       EncodePng(p), &error))
+          return h.Fail(error);
+      }
+    }
+    if (!o.quiet)
+      std::cout << "animation " << item.index << ": played " << played << " frames, t = " << from
+                << " .. " << to << " s" << (frames ? " (frames written)" : "") << "\n";
+    if (!o.out.empty() && !frames) return h.Write(o.out);
+    return 0;
+  }
+  if (o.verb == "viewer") {
+    if (o.out.empty()) {
+      std::cout << "animation " << item.index << ": a viewer needs a display; write it with "
+                << "-o viewer.html and open that page\n";
+      return 0;
+    }
+    if (Extension(o.out) != "html") return Usage("viewer writes an .html page");
+    return h.Write(o.out, true);
+  }
+  return Usage("unknown verb '" + o.verb + "'");
+}
+
+int Main(const std::vector<std::string>& args) {
+  Host h;
+  if (auto status = Parse(args, h.o)) return *status;
+  Options& o = h.o;
+  if (o.command == "convert" && Extension(o.out) != "pdf" && Extension(o.out) != "png" &&
+      Extension(o.out) != "html" && Extension(o.out) != "xml" && Extension(o.out) != "ens")
+    return Usage("convert: OUT must end in .pdf, .png, .html, .xml or .ens");
+  auto loaded = document::LoadDocument(o.in);
+  if (!loaded.document) return h.Fail(loaded.error);
+  std::vector<std::string> path = o.plugin_path;
+  for (const auto& d : MediumRegistry::DefaultSearchPath()) path.push_back(d);
+  h.registry = std::make_unique<MediumRegistry>(path);
+  HostOptions ho;
+  ho.slave_path = o.core;
+  ho.timeout_seconds = o.timeout;
+  ho.name = o.in;
+  ProgressBar bar(!o.quiet && isatty(STDERR_FILENO));
+  ho.progress = [&bar](const Embedded& item, double f) { bar(item, f); };
+  std::vector<std::string> warnings;
+  h.doc = std::make_unique<HostDocument>(std::move(*loaded.document), *h.registry, ho, &warnings);
+  for (const auto& w : warnings) h.Warn(w);
+  if (o.command == "convert") return h.Write(o.out);
+  return RunVerb(h);
+}
+
+}  // namespace
+}  // namespace asgard::host
+
+int main(int argc, char** argv) {
+  try {
+    return asgard::host::Main(std::vector<std::string>(argv + 1, argv + argc));
+  } catch (const std::exception& e) {
+    std::cerr << "dochost: internal error: " << e.what() << "\n";
+    return 1;
+  }
+}

@@ -1,0 +1,111 @@
+// The host's document tree: a parsed document plus one Embedded item per
+// subdocument of a plugin medium (seed 6.1: subdocuments, nodes, renditions).
+//
+//   Document ─ <DOCUMENT> ─ <ANIMATION> ─ <ASGARD>{scene}</ASGARD>   ← embedded item
+//                                       └ <POSTER>{base64 PNG}</POSTER> ← its poster frame
+//
+// An embedded item is a leaf element inside a <DOCUMENT> subdocument (POSTER
+// excepted).  Its medium comes from the registry by element name; without one
+// the item is a placeholder with the reason.  The poster is the host's own
+// generic mechanism for loosely coupled media: a PNG of the last frame kept
+// in the document, so it stays viewable without the slave.  Nodes are started
+// on demand; a failing node never stops the host — the item keeps a status
+// line and its last picture, and the document tree is never changed except by
+// SetText and SetPoster.
+#pragma once
+
+#include <functional>
+#include <map>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "formats/document/document.h"
+#include "host-shim/medium.h"
+
+namespace asgard::host {
+
+// An RGBA picture, rows from the top.
+struct Picture {
+  int width = 0, height = 0;
+  std::vector<uint8_t> rgba;
+  double time = 0.0;
+  bool empty() const { return rgba.empty(); }
+};
+std::string EncodePng(const Picture& picture);
+std::optional<Picture> DecodePng(const std::string& png);
+
+struct Embedded {
+  int index = 0;             // 1-based, document order
+  std::vector<size_t> path;  // child indices from Document::nodes to the element
+  std::string element;       // tag name
+  Medium* medium = nullptr;  // nullptr: placeholder
+  std::string text;          // the medium text (storage-decoded)
+  asgard_node* node = nullptr;
+  asgard_node_status status{};    // after the last call
+  std::string message;            // status line for captions
+  int width = 360, height = 240;  // presentation's desired size, points
+  bool simulated = false;
+  double t0 = 0, t1 = 0, frame_rate = 30;
+  Picture poster;  // from the document or the last frame drawn
+  bool poster_from_document = false;
+  std::map<int, asgard_rendition*> renditions;  // device → rendition
+  std::map<int, std::pair<int, int>> rendition_sizes;
+};
+
+struct HostOptions {
+  std::string slave_path;      // empty: the medium's default
+  double timeout_seconds = 0;  // 0: the medium's default
+  std::string name;            // for messages: the file name
+  // Simulation progress: (item, fraction).
+  std::function<void(const Embedded&, double)> progress;
+};
+
+class HostDocument {
+ public:
+  // Finds the embedded items and their media and decodes their texts; never
+  // starts a node.  `warnings` receives one line per placeholder or storage
+  // problem.
+  HostDocument(document::Document doc, MediumRegistry& registry, HostOptions options,
+               std::vector<std::string>* warnings = nullptr);
+  ~HostDocument();  // destroys renditions and nodes (slaves are shut down)
+  HostDocument(const HostDocument&) = delete;
+  HostDocument& operator=(const HostDocument&) = delete;
+
+  const document::Document& document() const { return doc_; }
+  std::vector<Embedded>& items() { return items_; }
+  const std::vector<Embedded>& items() const { return items_; }
+  const Embedded* ItemAt(const std::vector<size_t>& path) const;
+
+  // Starts the node (when needed) and simulates.  False with item.message set
+  // on any failure; the host goes on.
+  bool Simulate(Embedded& item);
+  // New medium text: stored in the document (storage encode) and the node
+  // updated (re-simulated).
+  bool SetText(Embedded& item, const std::string& text);
+  // Kills nothing itself: restarts a slave that crashed or hung, and simulates.
+  bool Restart(Embedded& item);
+  // A frame for (device, pixel size) at time t; falls back to the last frame
+  // of that rendition, then to the poster.  `flags`: ASGARD_RENDITION_*.
+  // Sets `live` when it came from the slave just now.
+  Picture Frame(Embedded& item, int device, int width, int height, double t, uint32_t flags,
+                bool* live = nullptr);
+  // Stores `picture` as the item's poster, in the document too.
+  void SetPoster(Embedded& item, const Picture& picture);
+  // A text command to the node (e.g. "handles on").
+  bool Command(Embedded& item, const std::string& line, std::string* reply);
+  void RefreshStatus(Embedded& item);
+
+ private:
+  document::Node* NodeAt(const std::vector<size_t>& path);
+  void FindItems(std::vector<std::string>* warnings);
+  bool EnsureNode(Embedded& item);
+  void Fail(Embedded& item, const asgard_error& error);
+
+  document::Document doc_;
+  MediumRegistry& registry_;
+  HostOptions options_;
+  std::vector<Embedded> items_;
+};
+
+}  // namespace asgard::host
