@@ -25,7 +25,7 @@ namespace {
 using document::Node;
 using document::NodeKind;
 
-constexpr double kCaptionGap = 4, kCaptionHeight = 12, kGap = 10;
+constexpr double kCaptionGap = 4, kCaptionHeight = 22, kGap = 10;
 
 std::string Collapse(const std::string& s) {
   std::string out;
@@ -206,7 +206,6 @@ void DrawRegion(cairo_t* cr, const Placed& p, const RegionContent& content) {
   caption.text = content.caption;
   PangoLayout* layout = MakeLayout(caption, p.w);
   pango_layout_set_alignment(layout, PANGO_ALIGN_CENTER);
-  pango_layout_set_ellipsize(layout, PANGO_ELLIPSIZE_END);
   cairo_move_to(cr, p.x, p.y + p.h + kCaptionGap);
   cairo_set_source_rgb(cr, 0.35, 0.36, 0.4);
   pango_cairo_show_layout(cr, layout);

@@ -68,7 +68,18 @@ std::unique_ptr<Medium> Medium::Load(const std::string& path, const std::string&
   m->node_ = m->Interface<asgard_node_v1>(ASGARD_IFACE_NODE);
   m->presentation_ = m->Interface<asgard_presentation_v1>(ASGARD_IFACE_PRESENTATION);
   m->rendition_ = m->Interface<asgard_rendition_v1>(ASGARD_IFACE_RENDITION);
-  if (!m->storage_) return fail("it provides no storage interface (seed 6.1 requires one)");
+  if (!m->storage_ || !m->storage_->decode || !m->storage_->encode)
+    return fail("it provides no complete storage interface (seed 6.1 requires one)");
+  // An interface with a missing function is treated as not provided.
+  if (m->node_ &&
+      !(m->node_->create && m->node_->destroy && m->node_->update && m->node_->simulate &&
+        m->node_->command && m->node_->get_text && m->node_->get_status && m->node_->restart))
+    m->node_ = nullptr;
+  if (m->presentation_ && !m->presentation_->desired_size) m->presentation_ = nullptr;
+  if (m->rendition_ && !(m->rendition_->create && m->rendition_->destroy &&
+                         m->rendition_->set_flags && m->rendition_->frame))
+    m->rendition_ = nullptr;
+  if (!m->node_) m->rendition_ = nullptr, m->presentation_ = nullptr;
   return m;
 }
 

@@ -1,0 +1,411 @@
+// The host side: plugin loading and refusal, storage through the real ASGARD
+// medium (property style, both flavours), slave faults (SIGKILL mid
+// simulation, a slave that stops answering, malformed answers), restart, and
+// the host document's poster frames.
+#include <gtest/gtest.h>
+#include <signal.h>
+#include <stdlib.h>
+
+#include <chrono>
+#include <random>
+
+#include "formats/document/document.h"
+#include "formats/document/file.h"
+#include "formats/document/xml.h"
+#include "host-shim/host_document.h"
+#include "host-shim/medium.h"
+
+namespace asgard::host {
+namespace {
+
+const std::string kPlugins = std::string(ASGARD_BINARY_DIR) + "/medium-plugin";
+const std::string kTestPlugins = std::string(ASGARD_BINARY_DIR) + "/tests/document/plugins";
+const std::string kCore = std::string(ASGARD_BINARY_DIR) + "/core/app/asgard-core";
+
+std::string ReadSample(const std::string& name) {
+  std::string bytes;
+  EXPECT_TRUE(
+      document::ReadFile(std::string(ASGARD_SOURCE_DIR) + "/samples/" + name, bytes, nullptr));
+  return bytes;
+}
+
+HostOptions Opts(const std::string& name, const std::string& core = "") {
+  HostOptions o;
+  o.name = name;
+  o.slave_path = core;
+  return o;
+}
+
+MediumRegistry& Registry() {
+  static MediumRegistry registry({kTestPlugins, kPlugins});
+  return registry;
+}
+
+Medium& Asgard() {
+  std::string error;
+  Medium* m = Registry().Find("ASGARD", &error);
+  EXPECT_NE(m, nullptr) << error;
+  return *m;
+}
+
+TEST(Plugins, TheAsgardMediumLoadsWithAllInterfaces) {
+  Medium& m = Asgard();
+  EXPECT_EQ(m.element(), "ASGARD");
+  EXPECT_EQ(m.entry().abi_major, static_cast<uint32_t>(ASGARD_MEDIUM_ABI_MAJOR));
+  EXPECT_NE(m.storage(), nullptr);
+  EXPECT_NE(m.node(), nullptr);
+  EXPECT_NE(m.presentation(), nullptr);
+  EXPECT_NE(m.rendition(), nullptr);
+}
+
+TEST(Plugins, AnotherMajorVersionIsRefusedWithAClearMessage) {
+  std::string error;
+  EXPECT_EQ(Registry().Find("FUTURE", &error), nullptr);
+  EXPECT_NE(error.find("medium_future.so"), std::string::npos) << error;
+  EXPECT_NE(error.find("ABI 2.3"), std::string::npos) << error;
+  EXPECT_NE(error.find("this host speaks ABI 1."), std::string::npos) << error;
+  EXPECT_NE(error.find("major versions must match"), std::string::npos) << error;
+}
+
+TEST(Plugins, MissingPluginOrEntryPointIsReported) {
+  std::string error;
+  EXPECT_EQ(Registry().Find("NOENTRY", &error), nullptr);
+  EXPECT_NE(error.find("has no entry point asgard_medium_get_entry()"), std::string::npos) << error;
+  EXPECT_EQ(Registry().Find("NOWHERE", &error), nullptr);
+  EXPECT_NE(error.find("no medium plugin for <NOWHERE>"), std::string::npos) << error;
+}
+
+TEST(Plugins, APluginReturningErrorsDoesNotStopTheHost) {
+  const std::string bytes =
+      "DOCUMENT M\n<M><P><DOCUMENT>\nDOCUMENT F\n<F><FAILING>{bad}</FAILING></F>\n</DOCUMENT>"
+      "<DOCUMENT>\nDOCUMENT F\n<F><FAILING>{ok}</FAILING></F>\n</DOCUMENT></P></M>\n";
+  auto parsed = document::Parse(bytes);
+  ASSERT_TRUE(parsed.ok());
+  std::vector<std::string> warnings;
+  HostDocument doc(*parsed.document, Registry(), Opts("t.ens"), &warnings);
+  ASSERT_EQ(doc.items().size(), 2u);
+  ASSERT_EQ(warnings.size(), 1u);
+  EXPECT_NE(warnings[0].find("refused on purpose"), std::string::npos) << warnings[0];
+  EXPECT_EQ(doc.items()[0].medium, nullptr);
+  Embedded& ok = doc.items()[1];
+  ASSERT_NE(ok.medium, nullptr);
+  EXPECT_FALSE(doc.Simulate(ok));
+  EXPECT_NE(ok.message.find("no node today"), std::string::npos) << ok.message;
+  EXPECT_FALSE(doc.SetText(ok, "new"));
+  EXPECT_NE(ok.message.find("cannot encode"), std::string::npos);
+  EXPECT_TRUE(doc.Frame(ok, ASGARD_DEVICE_PAGE, 10, 10, 0, 0).empty());
+  EXPECT_EQ(document::Write(doc.document()), bytes);
+}
+
+// ---- storage through the plugin ----
+
+std::string Decode(const std::string& body, int32_t* status = nullptr) {
+  asgard_bytes out{};
+  asgard_error e{};
+  const int32_t s = Asgard().storage()->decode(body.data(), body.size(), &out, &e);
+  if (status) *status = s;
+  return s == ASGARD_OK ? Asgard().Take(out) : std::string(e.message);
+}
+std::string Encode(const std::string& text) {
+  asgard_bytes out{};
+  asgard_error e{};
+  EXPECT_EQ(Asgard().storage()->encode(text.data(), text.size(), &out, &e), ASGARD_OK);
+  return Asgard().Take(out);
+}
+
+std::string RandomScene(std::mt19937& rng) {
+  static const std::vector<std::string> pieces = {"{",
+                                                  "}",
+                                                  "\\",
+                                                  "\\{",
+                                                  "\\\\}",
+                                                  "<ASGARD>",
+                                                  "</ASGARD>",
+                                                  "<DOCUMENT>",
+                                                  "DOCUMENT X",
+                                                  " ",
+                                                  "\n",
+                                                  "\t",
+                                                  "\r\n",
+                                                  "é",
+                                                  "→",
+                                                  "日本語",
+                                                  "𝄞",
+                                                  "&lt;",
+                                                  "<",
+                                                  ">",
+                                                  "\"",
+                                                  "]]>",
+                                                  "body b -shape s -init_pos {0 0 0}",
+                                                  "$x",
+                                                  "[list a b]",
+                                                  "\\n",
+                                                  "# comment"};
+  std::uniform_int_distribution<int> len(0, 60), pick(0, static_cast<int>(pieces.size()) - 1);
+  std::string s;
+  for (int i = len(rng); i > 0; --i) s += pieces[pick(rng)];
+  return s;
+}
+
+TEST(Storage, FigureSixTwoDecodesToTheSceneWithBracesUnescaped) {
+  auto parsed = document::Parse(ReadSample("memo.ens"));
+  ASSERT_TRUE(parsed.ok());
+  HostDocument doc(*parsed.document, Registry(), Opts("memo.ens"));
+  ASSERT_EQ(doc.items().size(), 1u);
+  EXPECT_EQ(doc.items()[0].element, "ASGARD");
+  std::string figure62;
+  ASSERT_TRUE(document::ReadFile(std::string(ASGARD_SOURCE_DIR) + "/samples/figure62.al", figure62,
+                                 nullptr));
+  const std::string scene = doc.items()[0].text;
+  for (const char* line : {"shape_set ss1 -desc {-sub {-pos {0 0 0} -sphere 0.5}}",
+                           "body b3 -artbody 1 -shape ss1 -init_pos {1 0 0} -init_dpos {0 1 0}",
+                           "simulator -finish 3"}) {
+    EXPECT_NE(scene.find(line), std::string::npos) << line;
+    EXPECT_NE(figure62.find(line), std::string::npos) << line;
+  }
+}
+
+TEST(Storage, RandomScenesSurviveByteForByteInBothFlavours) {
+  std::mt19937 rng(6204);
+  for (int i = 0; i < 300; ++i) {
+    const std::string scene = RandomScene(rng);
+    const std::string body = Encode(scene);
+    ASSERT_EQ(Decode(body), scene);
+    // Inside a whole document, through the SGML and the XML flavour.
+    const std::string file = "DOCUMENT M\n<M><DOCUMENT>\nDOCUMENT ANIMATION\n<ANIMATION><ASGARD>" +
+                             body + "</ASGARD></ANIMATION>\n</DOCUMENT></M>\n";
+    auto parsed = document::Parse(file);
+    ASSERT_TRUE(parsed.ok()) << parsed.error.Format();
+    auto xml = document::ParseXml(document::WriteXml(*parsed.document));
+    ASSERT_TRUE(xml.ok()) << xml.error.Format();
+    EXPECT_EQ(document::Write(*xml.document), file);
+    for (const auto* d : {&*parsed.document, &*xml.document}) {
+      HostDocument doc(*d, Registry(), Opts("r.ens"));
+      ASSERT_EQ(doc.items().size(), 1u);
+      EXPECT_EQ(doc.items()[0].text, scene);
+    }
+  }
+}
+
+TEST(Storage, MalformedBodiesGetAClearError) {
+  int32_t status = 0;
+  EXPECT_NE(Decode("no braces", &status).find("must hold one {"), std::string::npos);
+  EXPECT_EQ(status, ASGARD_ERR_SYNTAX);
+  EXPECT_NE(Decode("{a{b}", &status).find("unescaped brace"), std::string::npos);
+  EXPECT_EQ(Decode(" \n{x\\}y}\n"), "x}y");
+}
+
+// ---- nodes and slave faults ----
+
+struct Node {
+  asgard_node* node = nullptr;
+  ~Node() {
+    if (node) Asgard().node()->destroy(node);
+  }
+};
+
+asgard_node_status Status(asgard_node* n) {
+  asgard_node_status s{};
+  s.struct_size = sizeof s;
+  Asgard().node()->get_status(n, &s);
+  return s;
+}
+
+int32_t Create(const std::string& text, Node& n, double timeout = 20) {
+  asgard_node_options o{};
+  o.struct_size = sizeof o;
+  o.slave_path = kCore.c_str();
+  o.timeout_seconds = timeout;
+  asgard_error e{};
+  return Asgard().node()->create(text.data(), text.size(), &o, &n.node, &e);
+}
+
+const std::string kLong = R"(simulator -finish 20 -maxstep 0.0005 -collisions 0
+shape_set ball -desc {-sub {-sphere 0.2}}
+for {set i 0} {$i < 4} {incr i} {
+  body b$i -shape ball -init_pos [list $i 0 0] -init_dpos {0 1 0}
+  force -body b$i -y {-9.8} -gravitational 1
+}
+)";
+
+std::string Scene() {
+  std::string s;
+  EXPECT_TRUE(
+      document::ReadFile(std::string(ASGARD_SOURCE_DIR) + "/samples/figure62.al", s, nullptr));
+  return s;
+}
+
+TEST(Slave, SimulatesAndServesTwoRenditionsFromOneProcess) {
+  Node n;
+  ASSERT_EQ(Create(Scene(), n), ASGARD_OK);
+  asgard_error e{};
+  ASSERT_EQ(Asgard().node()->simulate(n.node, nullptr, nullptr, &e), ASGARD_OK) << e.message;
+  const asgard_node_status s = Status(n.node);
+  EXPECT_EQ(s.state, ASGARD_NODE_SIMULATED);
+  EXPECT_DOUBLE_EQ(s.t1, 3.0);
+  asgard_rendition *a = nullptr, *b = nullptr;
+  ASSERT_EQ(Asgard().rendition()->create(n.node, "v1", ASGARD_DEVICE_PAGE, 64, 48, &a, &e),
+            ASGARD_OK);
+  ASSERT_EQ(Asgard().rendition()->create(n.node, "v2", ASGARD_DEVICE_HTML, 32, 24, &b, &e),
+            ASGARD_OK);
+  asgard_frame f{};
+  f.struct_size = sizeof f;
+  ASSERT_EQ(Asgard().rendition()->frame(a, 0.0, &f, &e), ASGARD_OK) << e.message;
+  EXPECT_EQ(f.width, 64);
+  std::vector<uint8_t> first(f.pixels, f.pixels + 64 * 48 * 4);
+  ASSERT_EQ(Asgard().rendition()->frame(a, 3.0, &f, &e), ASGARD_OK);
+  EXPECT_NE(std::vector<uint8_t>(f.pixels, f.pixels + 64 * 48 * 4), first) << "the balls move";
+  ASSERT_EQ(Asgard().rendition()->frame(b, 1.0, &f, &e), ASGARD_OK);
+  EXPECT_EQ(f.width, 32);
+  EXPECT_EQ(Status(n.node).pid, s.pid) << "one process serves every rendition";
+  asgard_bytes reply{};
+  ASSERT_EQ(Asgard().node()->command(n.node, "info", &reply, &e), ASGARD_OK);
+  EXPECT_NE(Asgard().Take(reply).find("b2 b3"), std::string::npos);
+  EXPECT_EQ(Asgard().node()->command(n.node, "frobnicate", &reply, &e), ASGARD_ERR_INVALID);
+  EXPECT_NE(std::string(e.message).find("unknown command"), std::string::npos);
+}
+
+TEST(Slave, SceneErrorsAreReportedWithLineAndColumn) {
+  Node n;
+  EXPECT_EQ(Create("simulator -finish 1\nbody b -shape nope\n", n), ASGARD_ERR_SCENE);
+  ASSERT_NE(n.node, nullptr);
+  const asgard_node_status s = Status(n.node);
+  EXPECT_EQ(s.state, ASGARD_NODE_SCENE_ERROR);
+  EXPECT_NE(std::string(s.message).find("2:"), std::string::npos) << s.message;
+  asgard_error e{};
+  EXPECT_EQ(Asgard().node()->update(n.node, Scene().data(), Scene().size(), nullptr, nullptr, &e),
+            ASGARD_OK)
+      << e.message;
+  EXPECT_EQ(Status(n.node).state, ASGARD_NODE_SIMULATED);
+}
+
+void KillOnProgress(void* user, double fraction, const char*) {
+  auto* n = static_cast<Node*>(user);
+  const int pid = Status(n->node).pid;
+  if (fraction > 0.02 && pid > 0) kill(pid, SIGKILL);
+}
+
+TEST(Slave, SigkillMidSimulationLeavesTheHostRunningAndRestartWorks) {
+  Node n;
+  ASSERT_EQ(Create(kLong, n), ASGARD_OK);
+  asgard_error e{};
+  EXPECT_EQ(Asgard().node()->simulate(n.node, KillOnProgress, &n, &e), ASGARD_ERR_SLAVE);
+  EXPECT_NE(std::string(e.message).find("killed by signal 9"), std::string::npos) << e.message;
+  asgard_node_status s = Status(n.node);
+  EXPECT_EQ(s.state, ASGARD_NODE_CRASHED);
+  EXPECT_EQ(s.pid, 0);
+  // Calls on the dead node fail cleanly.
+  asgard_bytes reply{};
+  EXPECT_EQ(Asgard().node()->command(n.node, "ping", &reply, &e), ASGARD_ERR_SLAVE);
+  asgard_bytes text{};
+  ASSERT_EQ(Asgard().node()->get_text(n.node, &text, &e), ASGARD_OK);
+  EXPECT_EQ(Asgard().Take(text), kLong) << "the node keeps its text";
+  ASSERT_EQ(Asgard().node()->restart(n.node, &e), ASGARD_OK) << e.message;
+  EXPECT_GT(Status(n.node).pid, 0);
+  ASSERT_EQ(Asgard().node()->simulate(n.node, nullptr, nullptr, &e), ASGARD_OK) << e.message;
+  EXPECT_EQ(Status(n.node).state, ASGARD_NODE_SIMULATED);
+}
+
+TEST(Slave, ASlaveThatStopsAnsweringIsStoppedByTheWatchdog) {
+  setenv("ASGARD_CORE_FAULT", "hang-on-simulate", 1);
+  Node n;
+  const int32_t created = Create(Scene(), n, 0.5);
+  unsetenv("ASGARD_CORE_FAULT");
+  ASSERT_EQ(created, ASGARD_OK);
+  const int pid = Status(n.node).pid;
+  asgard_error e{};
+  const auto start = std::chrono::steady_clock::now();
+  EXPECT_EQ(Asgard().node()->simulate(n.node, nullptr, nullptr, &e), ASGARD_ERR_TIMEOUT);
+  EXPECT_LT(std::chrono::steady_clock::now() - start, std::chrono::seconds(5));
+  EXPECT_NE(std::string(e.message).find("did not answer 'simulate' within 0.5 s"),
+            std::string::npos)
+      << e.message;
+  EXPECT_EQ(Status(n.node).state, ASGARD_NODE_HUNG);
+  EXPECT_NE(kill(pid, 0), 0) << "the hung slave was killed and reaped";
+  ASSERT_EQ(Asgard().node()->restart(n.node, &e), ASGARD_OK) << e.message;
+  EXPECT_EQ(Asgard().node()->simulate(n.node, nullptr, nullptr, &e), ASGARD_OK) << e.message;
+}
+
+TEST(Slave, AMalformedAnswerIsAProtocolErrorNotACrash) {
+  setenv("ASGARD_CORE_FAULT", "garbage-on-frame", 1);
+  Node n;
+  const int32_t created = Create(Scene(), n);
+  unsetenv("ASGARD_CORE_FAULT");
+  ASSERT_EQ(created, ASGARD_OK);
+  asgard_error e{};
+  ASSERT_EQ(Asgard().node()->simulate(n.node, nullptr, nullptr, &e), ASGARD_OK);
+  asgard_rendition* r = nullptr;
+  ASSERT_EQ(Asgard().rendition()->create(n.node, "v", ASGARD_DEVICE_PAGE, 16, 16, &r, &e),
+            ASGARD_OK);
+  asgard_frame f{};
+  f.struct_size = sizeof f;
+  EXPECT_EQ(Asgard().rendition()->frame(r, 0, &f, &e), ASGARD_ERR_PROTOCOL);
+  EXPECT_NE(std::string(e.message).find("not a JSON object"), std::string::npos) << e.message;
+  EXPECT_EQ(Status(n.node).pid, 0);
+  ASSERT_EQ(Asgard().node()->restart(n.node, &e), ASGARD_OK);
+  ASSERT_EQ(Asgard().node()->simulate(n.node, nullptr, nullptr, &e), ASGARD_OK);
+  EXPECT_EQ(Asgard().rendition()->frame(r, 0, &f, &e), ASGARD_OK) << e.message;
+}
+
+TEST(Slave, AMissingSlaveProgramIsAStatusNotACrash) {
+  Node n;
+  asgard_node_options o{};
+  o.struct_size = sizeof o;
+  o.slave_path = "/nonexistent/asgard-core";
+  asgard_error e{};
+  EXPECT_EQ(Asgard().node()->create("x", 1, &o, &n.node, &e), ASGARD_ERR_SLAVE);
+  EXPECT_NE(std::string(e.message).find("cannot start"), std::string::npos) << e.message;
+}
+
+// ---- the host document ----
+
+TEST(HostDocument, KillingTheSlaveKeepsTheDocumentAndThePoster) {
+  const std::string bytes = ReadSample("memo.ens");
+  auto parsed = document::Parse(bytes);
+  ASSERT_TRUE(parsed.ok());
+  HostDocument doc(*parsed.document, Registry(), Opts("memo.ens", kCore));
+  Embedded& item = doc.items()[0];
+  ASSERT_TRUE(doc.Simulate(item)) << item.message;
+  bool live = false;
+  const Picture p = doc.Frame(item, ASGARD_DEVICE_PAGE, 90, 60, 1.0, 0, &live);
+  ASSERT_TRUE(live);
+  kill(item.status.pid, SIGKILL);
+  const Picture q = doc.Frame(item, ASGARD_DEVICE_PAGE, 90, 60, 2.0, 0, &live);
+  EXPECT_FALSE(live);
+  EXPECT_EQ(q.rgba, p.rgba) << "the last frame is shown";
+  EXPECT_NE(item.message.find("killed by signal 9"), std::string::npos) << item.message;
+  EXPECT_EQ(document::Write(doc.document()), bytes) << "the document is intact";
+  ASSERT_TRUE(doc.Restart(item)) << item.message;
+  doc.Frame(item, ASGARD_DEVICE_PAGE, 90, 60, 2.0, 0, &live);
+  EXPECT_TRUE(live);
+}
+
+TEST(HostDocument, PosterFramesAreStoredAndReadBack) {
+  const std::string bytes = ReadSample("memo.ens");
+  auto parsed = document::Parse(bytes);
+  ASSERT_TRUE(parsed.ok());
+  std::string with_poster;
+  Picture p;
+  {
+    HostDocument doc(*parsed.document, Registry(), Opts("memo.ens", kCore));
+    Embedded& item = doc.items()[0];
+    ASSERT_TRUE(doc.Simulate(item));
+    p = doc.Frame(item, ASGARD_DEVICE_PAGE, 60, 40, 1.5, ASGARD_RENDITION_HANDLES);
+    doc.SetPoster(item, p);
+    doc.SetPoster(item, p);  // replaces, does not add a second one
+    with_poster = document::Write(doc.document());
+  }
+  EXPECT_EQ(with_poster.find("<POSTER>"), with_poster.rfind("<POSTER>"));
+  auto again = document::Parse(with_poster);
+  ASSERT_TRUE(again.ok()) << again.error.Format();
+  HostDocument doc(*again.document, Registry(), Opts("memo.ens"));
+  ASSERT_EQ(doc.items().size(), 1u);
+  EXPECT_TRUE(doc.items()[0].poster_from_document);
+  EXPECT_EQ(doc.items()[0].poster.rgba, p.rgba);
+  // Without the POSTER element the document is the memo again, byte for byte.
+  const size_t a = with_poster.find("\n<POSTER>"), b = with_poster.find("</POSTER>") + 9;
+  EXPECT_EQ(with_poster.substr(0, a) + with_poster.substr(b), bytes);
+}
+
+}  // namespace
+}  // namespace asgard::host
