@@ -242,7 +242,8 @@ int32_t RunSimulation(asgard_node* node, const char* method, const json& params,
   node->bodies = r.result.value("bodies", 0);
   node->state = ASGARD_NODE_SIMULATED;
   char msg[160];
-  std::snprintf(msg, sizeof msg, "%d bodies, t = %g .. %g s", node->bodies, node->t0, node->t1);
+  std::snprintf(msg, sizeof msg, "%d %s, t = %g .. %g s", node->bodies,
+                node->bodies == 1 ? "body" : "bodies", node->t0, node->t1);
   node->message = msg;
   return ASGARD_OK;
 }
