@@ -17,7 +17,7 @@ packages=(
   libcairo2-dev libpango1.0-dev libosmesa6-dev libpng-dev libxml2-dev ffmpeg
   # tests and benchmarks
   libgtest-dev libgmock-dev libbenchmark-dev
-  ghostscript poppler-utils povray chromium
+  ghostscript poppler-utils povray chromium nodejs
 )
 
 missing=()
@@ -43,3 +43,7 @@ if [ "$(id -u)" -ne 0 ]; then sudo_cmd=(sudo); fi
 export DEBIAN_FRONTEND=noninteractive
 "${sudo_cmd[@]}" apt-get update -q
 "${sudo_cmd[@]}" apt-get install -y -q --no-install-recommends "${missing[@]}"
+# npm ships inside some nodejs packages; install Debian's only when absent.
+if ! command -v npm >/dev/null 2>&1; then
+  "${sudo_cmd[@]}" apt-get install -y -q --no-install-recommends npm
+fi

@@ -118,8 +118,10 @@ bool Session::Simulate(const std::function<void(double)>& progress) {
       const int b = run_->equations->FindBody(name);
       static_moved |= b < 0 || run_->equations->bodies[b].first_var < 0;
     }
-  if (!run_ || !run_->simulation || structure_dirty_ || static_moved) {
+  if (!run_ || !run_->simulation) {
     FullRun(progress);
+  } else if (structure_dirty_ || static_moved) {
+    CarryOverRun(progress);
   } else if (!dirty_bodies_.empty()) {
     auto& eq = *run_->equations;
     auto& sim = *run_->simulation;

@@ -21,8 +21,10 @@
 //   equations, their compiled tapes and every unaffected component's results
 //   are kept: the components holding those bodies' variables restart, with
 //   everything that reads them and (through the collision monitor) everything
-//   that collided with them afterwards.  The result equals a from-scratch run
-//   bit for bit.  Any other change forms the equations anew.
+//   that collided with them afterwards.  Any other change forms the equations
+//   anew and carries over the results of every component whose equations and
+//   inputs are unchanged (carry.cc).  Either way the result equals a
+//   from-scratch run bit for bit.
 // * Undo and redo cover text and graphical edits alike (they are the same
 //   thing: a new text).
 #pragma once
@@ -131,6 +133,9 @@ class Session {
   std::vector<ElementChange> Adopt(const std::string& text, bool record);
   EditResult ApplyEdits(std::vector<TextEdit> edits);
   void FullRun(const std::function<void(double)>& progress);
+  // Forms the equations anew but carries over every component whose
+  // equations and inputs are unchanged (carry.cc).
+  void CarryOverRun(const std::function<void(double)>& progress);
 
   std::string text_;
   scene::Scene scene_;

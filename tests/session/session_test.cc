@@ -222,6 +222,54 @@ TEST(Incremental, AnEditThatChangesWhoCollidesWithWhomMatchesFromScratch) {
   EXPECT_EQ(sim.component(sim.component_of(idle + physics::kQw)).counters().truncated_steps, 0);
 }
 
+TEST(Incremental, EditingOneBodysForceKeepsEveryOtherComponentAndMatchesFromScratch) {
+  Session s(Balls(8));
+  ASSERT_TRUE(s.Simulate());
+  // Change b3's force law (an equation, not an initial value).
+  std::string text = s.text();
+  const std::string old_force = "-z {-b3.z}";
+  text.replace(text.find(old_force), old_force.size(), "-z {-4 * b3.z}");
+  s.UpdateText(text);
+  ASSERT_TRUE(s.Simulate());
+  const auto stats = s.last_stats();
+  EXPECT_TRUE(stats.rebuilt);  // the equations were formed anew ...
+  // ... but only b3's z component (z, dz read the force) was recomputed.
+  EXPECT_EQ(stats.components_reset, 1);
+  Session scratch(s.text());
+  ASSERT_TRUE(scratch.Simulate());
+  ExpectSameWaveforms(*s.run()->simulation, *scratch.run()->simulation);
+  EXPECT_LT(stats.steps, scratch.run()->simulation->totals().steps / 8);
+}
+
+TEST(Incremental, ImpactsBetweenUnchangedBodiesAreKeptAfterAnEquationEdit) {
+  const std::string base = std::string(kBall) +
+                           "body a -shape ball -mass 1 -init_pos {0 0 0} -init_dpos {1 0 0}\n"
+                           "body b -shape ball -mass 1 -init_pos {3 0 0}\n"
+                           "body c -shape ball -mass 1 -init_pos {0 10 0}\n"
+                           "force -body c -x 0 -y 0 -z 0\n"
+                           "simulator -finish 5\n";
+  Session s(base);
+  ASSERT_TRUE(s.Simulate());
+  ASSERT_EQ(s.run()->collisions->impacts().size(), 1u);  // a hits b
+  std::string text = s.text();
+  text.replace(text.find("force -body c -x 0"), 18, "force -body c -x 1");
+  s.UpdateText(text);
+  ASSERT_TRUE(s.Simulate());
+  // a and b were carried over with their impact; only c's x was recomputed.
+  EXPECT_EQ(s.last_stats().components_reset, 2);  // c.dx and c.x
+  Session scratch(s.text());
+  ASSERT_TRUE(scratch.Simulate());
+  const auto& got = s.run()->collisions->impacts();
+  const auto& want = scratch.run()->collisions->impacts();
+  ASSERT_EQ(got.size(), want.size());
+  for (size_t i = 0; i < got.size(); ++i) {
+    EXPECT_EQ(got[i].t, want[i].t);
+    EXPECT_EQ(got[i].a, want[i].a);
+    EXPECT_EQ(got[i].b, want[i].b);
+  }
+  ExpectSameWaveforms(*s.run()->simulation, *scratch.run()->simulation);
+}
+
 TEST(Undo, UndoingAGraphicalEditRestoresTextAndResultsExactly) {
   const std::string base = Balls(3) + "# trailing comment\n";
   Session s(base);

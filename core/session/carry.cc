@@ -1,0 +1,178 @@
+// Incremental re-simulation after an edit that changed equations.
+//
+//   old run ──┐                          ┌── component unchanged and all its
+//             ├─ match variables by name ┤   inputs unchanged: results copied
+//   new equations ┘                      └── otherwise: computed afresh
+//
+// Two equations are the same when their expression DAGs are structurally
+// identical — operators, constants to the bit, operands in the same order,
+// variables matched by name and trajectory functions by name and knots.  The
+// comparison is deliberately strict: operand order decides the order of
+// floating-point operations, so only an identical DAG is guaranteed to give
+// identical numbers, and results carried over must equal a from-scratch run
+// bit for bit.  Impacts between two carried-over bodies stay; an impact
+// between a carried-over body and a changed one cuts the carried-over body
+// back to just before it.
+#include <cstring>
+#include <map>
+#include <set>
+
+#include "core/physics/trajectory.h"
+#include "core/session/elements.h"
+#include "core/session/session.h"
+
+namespace asgard::session {
+namespace {
+
+class Matcher {
+ public:
+  Matcher(const physics::EquationSystem& a, const physics::EquationSystem& b,
+          const scene::Scene& sa, const scene::Scene& sb)
+      : a_(a), b_(b) {
+    std::map<std::string, int> by_name;
+    for (size_t i = 0; i < a.variables.size(); ++i) by_name[a.variables[i].name] = static_cast<int>(i);
+    var_.assign(b.variables.size(), -1);
+    for (size_t i = 0; i < b.variables.size(); ++i) {
+      auto it = by_name.find(b.variables[i].name);
+      if (it != by_name.end()) var_[i] = it->second;
+    }
+    curve_.assign(b.curves.size(), -1);
+    for (size_t k = 0; k < b.curves.size() && k < sb.trajectories.size(); ++k)
+      for (size_t j = 0; j < a.curves.size() && j < sa.trajectories.size(); ++j)
+        if (sa.trajectories[j].name == sb.trajectories[k].name &&
+            a.curves[j]->times == b.curves[k]->times && a.curves[j]->points == b.curves[k]->points)
+          curve_[k] = static_cast<int>(j);
+  }
+
+  // Old variable for new variable i, or -1.
+  int OldVariable(int i) const { return var_[i]; }
+
+  bool SameVariable(int i) {
+    const int o = var_[i];
+    if (o < 0) return false;
+    const auto& nv = b_.variables[i];
+    const auto& ov = a_.variables[o];
+    if (std::memcmp(&nv.initial, &ov.initial, sizeof(double)) != 0 ||
+        nv.breakpoints != ov.breakpoints || nv.overrides.size() != ov.overrides.size() ||
+        !Same(ov.rhs, nv.rhs))
+      return false;
+    for (size_t k = 0; k < nv.overrides.size(); ++k) {
+      const auto &x = ov.overrides[k], &y = nv.overrides[k];
+      if (x.kind != y.kind || x.from != y.from || x.to != y.to || !Same(x.expr, y.expr)) return false;
+    }
+    return true;
+  }
+
+ private:
+  bool Same(expr::NodeId x, expr::NodeId y) {
+    const auto key = std::make_pair(x, y);
+    if (auto it = memo_.find(key); it != memo_.end()) return it->second;
+    const expr::Node& p = a_.pool.node(x);
+    const expr::Node& q = b_.pool.node(y);
+    bool same = p.op == q.op && p.order == q.order && p.args.size() == q.args.size() &&
+                std::memcmp(&p.value, &q.value, sizeof(double)) == 0;
+    if (same && p.op == expr::Op::kVar) same = var_[q.index] == p.index;
+    else if (same && p.op == expr::Op::kExtern)
+      same = p.index % 3 == q.index % 3 && curve_[q.index / 3] == p.index / 3;
+    else if (same) same = p.index == q.index;
+    for (size_t k = 0; same && k < p.args.size(); ++k) same = Same(p.args[k], q.args[k]);
+    memo_[key] = same;
+    return same;
+  }
+
+  const physics::EquationSystem& a_;
+  const physics::EquationSystem& b_;
+  std::vector<int> var_, curve_;
+  std::map<std::pair<expr::NodeId, expr::NodeId>, bool> memo_;
+};
+
+}  // namespace
+
+void Session::CarryOverRun(const std::function<void(double)>& progress) {
+  std::unique_ptr<app::Run> old = std::move(run_);
+  app::RunOptions opts = options_;
+  opts.prepare_only = true;
+  run_ = std::make_unique<app::Run>(app::Simulate(text_, opts));
+  stats_.rebuilt = true;
+  if (!run_->simulation) return;
+  auto& sim = *run_->simulation;
+  const auto& ne = *run_->equations;
+  const auto& oe = *old->equations;
+  const auto& osim = *old->simulation;
+  Matcher match(oe, ne, old->scene, run_->scene);
+  // Components in dependency order: clean when every variable is the same,
+  // they were one component before, and every input component is clean.
+  std::vector<char> clean(sim.component_count(), 0);
+  for (int c = 0; c < sim.component_count(); ++c) {
+    const auto& vars = sim.component(c).variables();
+    int oc = -1;
+    bool ok = true;
+    for (int v : vars) {
+      ok = ok && match.SameVariable(v);
+      if (!ok) break;
+      const int o = osim.component_of(match.OldVariable(v));
+      if (oc < 0) oc = o;
+      ok = ok && o == oc;
+    }
+    ok = ok && oc >= 0 && osim.component(oc).variables().size() == vars.size();
+    for (int u : sim.partition().upstream[c]) ok = ok && clean[u];
+    if (!ok) continue;
+    clean[c] = 1;
+    sim.CopyResults(c, osim.component(oc));
+  }
+  // Bodies whose every component was carried over (static bodies: when
+  // their element and shape read the same).
+  auto body_clean = [&](const physics::EquationSystem& eq, const scene::Scene& sc, int b,
+                        const solver::Simulation* s, const std::vector<char>* cl) {
+    const auto& m = eq.bodies[b];
+    if (m.first_var >= 0) {
+      for (int k = 0; k < physics::kBodySlots; ++k)
+        if (!(*cl)[s->component_of(m.first_var + k)]) return false;
+      return true;
+    }
+    (void)sc;
+    return true;
+  };
+  std::map<std::string, int> new_body;
+  for (size_t b = 0; b < ne.bodies.size(); ++b) new_body[ne.bodies[b].name] = static_cast<int>(b);
+  auto static_same = [&](int ob, int nb) {
+    const auto &x = oe.bodies[ob], &y = ne.bodies[nb];
+    return x.x0 == y.x0 && x.q0.coeffs() == y.q0.coeffs() && x.pieces.size() == y.pieces.size();
+  };
+  if (old->collisions && run_->collisions) {
+    std::vector<solver::Impact> keep;
+    for (const auto& imp : old->collisions->impacts()) {
+      auto ia = new_body.find(oe.bodies[imp.a].name), ib = new_body.find(oe.bodies[imp.b].name);
+      const bool a_ok = ia != new_body.end() &&
+                        (ne.bodies[ia->second].first_var < 0
+                             ? static_same(imp.a, ia->second)
+                             : body_clean(ne, run_->scene, ia->second, &sim, &clean));
+      const bool b_ok = ib != new_body.end() &&
+                        (ne.bodies[ib->second].first_var < 0
+                             ? static_same(imp.b, ib->second)
+                             : body_clean(ne, run_->scene, ib->second, &sim, &clean));
+      if (a_ok && b_ok) {
+        solver::Impact moved = imp;
+        moved.a = std::min(ia->second, ib->second);
+        moved.b = std::max(ia->second, ib->second);
+        keep.push_back(moved);
+        continue;
+      }
+      // The clean side's motion after the impact depended on the changed one.
+      for (auto [ok, it] : {std::pair{a_ok, ia}, std::pair{b_ok, ib}}) {
+        if (!ok || ne.bodies[it->second].first_var < 0) continue;
+        for (int k = 0; k < physics::kBodySlots; ++k)
+          sim.Truncate(sim.component_of(ne.bodies[it->second].first_var + k), imp.t, /*strict=*/true);
+      }
+    }
+    run_->collisions->AdoptImpacts(keep);
+  }
+  stats_.components = sim.component_count();
+  for (char c : clean) stats_.components_reset += c ? 0 : 1;
+  const long steps_before = sim.totals().steps;
+  run_->ok = sim.Run(progress);
+  if (!run_->ok) run_->solver_error = sim.error();
+  stats_.steps = sim.totals().steps - steps_before;
+}
+
+}  // namespace asgard::session
