@@ -39,6 +39,10 @@ void Prepare(Run& run, std::string_view text, const RunOptions& options, bool si
   const bool collide = options.collisions.value_or(!scene.simulator || scene.simulator->collisions);
   if (collide && run.equations->bodies.size() >= 2)
     run.collisions = std::make_unique<solver::CollisionMonitor>(*run.simulation);
+  if (options.prepare_only) {
+    run.ok = true;
+    return;
+  }
   const bool ok = run.simulation->Run(options.progress);
   if (run.collisions)
     for (const auto& w : run.collisions->warnings()) run.diagnostics.push_back(w);

@@ -35,6 +35,7 @@ struct RunOptions {
   bool use_scene_tolerances = true;  // simulator -rtol/-atol/-step/-maxstep
   std::optional<bool> collisions;    // overrides simulator -collisions
   bool allow_scene_errors = false;   // simulate the valid part of a scene with errors
+  bool prepare_only = false;         // build the simulation but do not run it
   std::function<void(double)> progress;
 };
 

@@ -219,6 +219,13 @@ CollisionMonitor::CollisionMonitor(Simulation& sim, double separation)
   StartEpoch(0);
 }
 
+void CollisionMonitor::AdoptImpacts(const std::vector<Impact>& impacts) {
+  impacts_.insert(impacts_.end(), impacts.begin(), impacts.end());
+  std::sort(impacts_.begin(), impacts_.end(), [](const Impact& x, const Impact& y) {
+    return x.t != y.t ? x.t < y.t : std::tie(x.a, x.b) < std::tie(y.a, y.b);
+  });
+}
+
 bool CollisionMonitor::Tested(int a, int b) const {
   if (a == b) return false;
   const auto& A = bodies_[a];

@@ -75,6 +75,9 @@ class CollisionMonitor {
   const std::vector<scene::Diagnostic>& warnings() const { return warnings_; }
   // Gap at which bodies land before an impact.
   double separation() const { return separation_; }
+  // Takes over impacts of an earlier run between bodies whose results were
+  // carried over (indices already mapped to this run's bodies).
+  void AdoptImpacts(const std::vector<Impact>& impacts);
   // Whether bodies a and b are ever tested against each other.
   bool Tested(int a, int b) const;
 

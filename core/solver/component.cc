@@ -526,6 +526,14 @@ double Component::Truncate(double t, bool strict) {
   return wave_.t_end();
 }
 
+void Component::CopyResults(const Component& from) {
+  wave_ = from.wave_;
+  jumps_ = from.jumps_;
+  holds_ = from.holds_;
+  last_mode_ = nullptr;
+  jac_sample_ = -1;
+}
+
 void Component::AddJump(double t, int local, double value) {
   jumps_.push_back({t, local, value});
 }

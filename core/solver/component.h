@@ -125,6 +125,9 @@ class Component {
   void AddHold(double t, int local, double value);
   void ReleaseHold(double t, int local);
   bool Held(int local, double t) const;
+  // Takes over another component's results (samples and events) — the same
+  // variables with the same equations, from an earlier form of the scene.
+  void CopyResults(const Component& from);
   // Drops the events after t (with `strict`, at or after t): jumps, holds
   // starting then, and releases then.
   void ForgetAfter(double t, bool strict);

@@ -160,6 +160,12 @@ void Simulation::Truncate(int c, double t, bool strict) {
   if (--truncate_depth_ == 0 && after_truncate) after_truncate(*this);
 }
 
+void Simulation::CopyResults(int c, const Component& from) {
+  components_[c]->CopyResults(from);
+  RebuildBreakpoints(c);
+  RepairQueue({c});
+}
+
 void Simulation::ResetToStart(int c) {
   ++truncate_depth_;
   Truncate(c, sys_.t0);

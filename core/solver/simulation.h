@@ -71,6 +71,9 @@ class Simulation {
   double Value(int var, double t, Side side = Side::kRight) const;
   double Rate(int var, double t, Side side = Side::kRight) const;
 
+  // Takes over component `from` of an earlier simulation as component c
+  // (same variables, same equations, same inputs).
+  void CopyResults(int c, const Component& from);
   // Starts component c and everything reading from it afresh from the
   // initial values now in the equation system (after an edit changed them).
   void ResetToStart(int c);
