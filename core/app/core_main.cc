@@ -15,8 +15,10 @@
 // -32601 unknown method, -32602 bad params) — and no exception leaves a
 // handler.  Only a frame header that cannot be trusted (a length above
 // kMaxMessage) ends the process, after an error reply, since the stream can
-// no longer be resynchronised.  The editing model (core/session) will later
-// take over `update`; for now it re-evaluates the text and re-simulates.
+// no longer be resynchronised.  The scene lives in a core/session Session:
+// `update` adopts the new text through it (change analysis, one undo
+// history) and `simulate` re-simulates incrementally; `edit` applies a
+// graphical edit and answers with the text patches.
 //
 // Test hooks (environment ASGARD_CORE_FAULT): "hang-on-simulate" stops
 // answering when asked to simulate; "garbage-on-frame" answers a frame request
@@ -37,6 +39,7 @@
 #include <thread>
 
 #include "core/app/pipeline.h"
+#include "core/session/session.h"
 #include "core/render/sampler.h"
 #include "core/render/shaded.h"
 #include "core/render/wire.h"
@@ -56,9 +59,10 @@ JSON-RPC 2.0 requests (a 4-byte big-endian length, then the JSON text) on the
 socket N (default: requests on standard input, answers on standard output).
 Frames are written as RGBA into the shared memory object inherited as --shm-fd.
 
-Methods: load {text}, update {text}, simulate {}, open_rendition {rendition,
-width, height, offset, device}, close_rendition {rendition}, frame {rendition,
-t, handles?, wire?}, command {line}, shutdown {}.
+Methods: load {text}, update {text}, simulate {}, edit {element, param,
+values}, undo {}, redo {}, open_rendition {rendition, width, height, offset,
+device}, close_rendition {rendition}, frame {rendition, t, handles?, wire?},
+command {line}, shutdown {}.
 
 Exit status 0 after shutdown or end of input, 2 on bad usage or a broken
 stream.
@@ -192,16 +196,33 @@ class Slave {
       return {{"ok", true}};
     }
     if (method == "frame") return Frame(params);
+    if (method == "edit") return Edit(params);
+    if (method == "undo" || method == "redo") {
+      if (!session_) throw RpcError{1, "no scene is loaded"};
+      const bool done = method == "undo" ? session_->Undo() : session_->Redo();
+      return {{"ok", done}, {"text", session_->text()}};
+    }
     if (method == "command") return Command(params.at("line").get<std::string>());
     throw RpcError{-32601, "unknown method '" + method + "'"};
   }
 
+  // The session keeps one history and simulates incrementally: after an
+  // update only what the edit affected is computed again.
   json Load(const std::string& text) {
     if (fault_ == "exit-on-load") std::_Exit(3);
     text_ = text;
     sampler_.reset();
-    run_.reset();
     for (auto& [k, r] : renditions_) r.renderer.reset();
+    json changes = json::array();
+    if (!session_) {
+      session_ = std::make_unique<session::Session>(text_);
+    } else {
+      for (const auto& c : session_->UpdateText(text_))
+        if (c.change != session::Change::kUnchanged)
+          changes.push_back({{"kind", scene::ElementKindName(c.kind)},
+                             {"name", c.name},
+                             {"change", session::ChangeName(c.change)}});
+    }
     app::Run check = app::Check(text_);
     json diagnostics = json::array();
     for (const auto& d : check.diagnostics)
@@ -209,20 +230,47 @@ class Slave {
           {{"line", d.span.line}, {"column", d.span.column}, {"message", d.message}});
     json bodies = json::array();
     for (const auto& b : check.scene.bodies) bodies.push_back(b.name);
-    return {{"ok", check.ok}, {"diagnostics", diagnostics}, {"bodies", bodies}};
+    return {{"ok", check.ok}, {"diagnostics", diagnostics}, {"bodies", bodies},
+            {"changes", changes}};
+  }
+
+  // A graphical edit: {element, param, values} → the text patches (byte
+  // offsets into the previous text, end exclusive, with 1-based lines and
+  // columns counted in bytes) and the new text.
+  json Edit(const json& params) {
+    if (!session_) throw RpcError{1, "no scene is loaded"};
+    if (!params.contains("element") || !params["element"].is_string() ||
+        !params.contains("param") || !params["param"].is_string() ||
+        !params.contains("values") || !params["values"].is_array())
+      throw RpcError{-32602, "invalid params: edit needs element, param and values"};
+    std::vector<double> values;
+    for (const auto& v : params["values"]) {
+      if (!v.is_number()) throw RpcError{-32602, "invalid params: values must be numbers"};
+      values.push_back(v.get<double>());
+    }
+    const auto r = session_->SetParameter(params["element"], params["param"], values);
+    if (!r.ok) throw RpcError{1, r.error};
+    json edits = json::array();
+    for (const auto& e : r.edits)
+      edits.push_back({{"begin", e.begin}, {"end", e.end}, {"text", e.text},
+                       {"line", e.line}, {"column", e.column},
+                       {"end_line", e.end_line}, {"end_column", e.end_column}});
+    text_ = session_->text();
+    sampler_.reset();
+    for (auto& [k, r2] : renditions_) r2.renderer.reset();
+    return {{"ok", true}, {"edits", edits}, {"text", text_}, {"units", "bytes"}};
   }
 
   json Simulate(const json& id) {
     if (fault_ == "hang-on-simulate")
       for (;;) std::this_thread::sleep_for(std::chrono::hours(1));
     sampler_.reset();
-    run_ = std::make_unique<app::Run>();
-    app::RunOptions options;
+    if (!session_) session_ = std::make_unique<session::Session>(text_);
     auto last = std::chrono::steady_clock::now() - std::chrono::seconds(1);
     double t0 = 0, t1 = 1;
     if (auto check = app::Check(text_); check.ok)
       t0 = check.equations->t0, t1 = check.equations->t1;
-    options.progress = [&](double t) {
+    auto progress = [&](double t) {
       const auto now = std::chrono::steady_clock::now();
       if (now - last < std::chrono::milliseconds(50)) return;
       last = now;
@@ -231,15 +279,21 @@ class Slave {
             {"method", "progress"},
             {"params", {{"id", id}, {"time", t}, {"fraction", f}}}});
     };
-    *run_ = app::Simulate(text_, options);
-    if (!run_->ok) {
-      std::string message = run_->solver_error;
-      for (const auto& d : run_->diagnostics) {
-        if (!message.empty()) message += "; ";
-        message +=
-            std::to_string(d.span.line) + ":" + std::to_string(d.span.column) + ": " + d.message;
-      }
-      run_.reset();
+    // A scene with errors is refused (the document shows its poster frame
+    // and the errors) rather than animated in part.
+    std::string message;
+    for (const auto& d : session_->scene().diagnostics) {
+      if (d.severity != scene::Severity::kError) continue;
+      if (!message.empty()) message += "; ";
+      message +=
+          std::to_string(d.span.line) + ":" + std::to_string(d.span.column) + ": " + d.message;
+    }
+    const bool ok = message.empty() && session_->Simulate(progress);
+    run_ = session_->run();
+    if (!ok || !run_ || !run_->ok) {
+      if (run_ && !run_->solver_error.empty())
+        message += (message.empty() ? "" : "; ") + run_->solver_error;
+      run_ = nullptr;
       throw RpcError{1, message.empty() ? "the scene could not be simulated" : message};
     }
     sampler_ = std::make_unique<render::SceneSampler>(*run_);
@@ -248,7 +302,9 @@ class Slave {
             {"t1", sampler_->t1()},
             {"frame_rate", sampler_->frame_rate()},
             {"bodies", sampler_->bodies().size()},
-            {"seconds", run_->seconds}};
+            {"seconds", session_->last_stats().seconds},
+            {"incremental", !session_->last_stats().rebuilt},
+            {"components_reset", session_->last_stats().components_reset}};
   }
 
   json OpenRendition(const json& params) {
@@ -335,7 +391,8 @@ class Slave {
   size_t shm_size_;
   std::string fault_;
   std::string text_;
-  std::unique_ptr<app::Run> run_;
+  std::unique_ptr<session::Session> session_;
+  const app::Run* run_ = nullptr;  // the session's last run
   std::unique_ptr<render::SceneSampler> sampler_;
   render::ViewState view_;
   std::map<int, Rendition> renditions_;
