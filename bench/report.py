@@ -443,6 +443,9 @@ def main():
             p.save(os.path.join(plots, "energy.svg"))
             md += [f"![energy]({rel}/energy.svg)", ""]
 
+    notes = os.path.join(os.path.dirname(os.path.abspath(__file__)), "notes.md")
+    if os.path.exists(notes):
+        md += ["", open(notes).read().strip(), ""]
     with open(doc, "w") as f:
         f.write("\n".join(md) + "\n")
 

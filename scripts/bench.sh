@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # Runs the whole benchmark suite from one command: installs the bench-only
 # peers (scripts/bench-setup.sh), builds asgard_bench (Release, build-bench/),
-# runs every suite, writes CSV files and SVG plots to bench-out/, and
+# runs every suite, writes CSV files and SVG plots to bench/results/, and
 # regenerates docs/benchmarks.md.
 #
 # Usage: scripts/bench.sh [--quick] [--jobs N] [--out DIR] [asgard_bench options/suites]
@@ -10,7 +10,7 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 jobs=1
-out=bench-out
+out=bench/results
 args=()
 while [ $# -gt 0 ]; do
   case "$1" in
