@@ -126,6 +126,8 @@ class CollisionMonitor {
   std::vector<scene::Diagnostic> warnings_;
   CollisionCounters counters_;
   bool responding_ = false;
+  double last_impact_time_ = -1e300;
+  int same_instant_ = 0;  // impacts in a row at last_impact_time_
   double respond_time_ = 0.0;
   bool in_after_truncate_ = false;
 };

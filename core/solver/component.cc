@@ -535,6 +535,12 @@ void Component::CopyResults(const Component& from) {
 }
 
 void Component::AddJump(double t, int local, double value) {
+  // A later jump of the same variable at the same time supersedes it.
+  for (Jump& j : jumps_)
+    if (j.t == t && j.local == local) {
+      j.value = value;
+      return;
+    }
   jumps_.push_back({t, local, value});
 }
 

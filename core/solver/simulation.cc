@@ -86,7 +86,7 @@ void Simulation::Push(int c) {
 }
 
 bool Simulation::StepOnce() {
-  while (!queue_.empty()) {
+  while (!failed_ && !queue_.empty()) {
     const Entry e = queue_.top();
     queue_.pop();
     if (e.stamp != stamp_[e.c]) continue;  // superseded by a truncation
@@ -99,6 +99,7 @@ bool Simulation::StepOnce() {
       return false;
     }
     if (after_step) after_step(*this, e.c);
+    if (failed_) return false;
     Push(e.c);
     for (int d : partition_.downstream[e.c]) Push(d);
     return true;
@@ -117,6 +118,7 @@ bool Simulation::Run(const std::function<void(double)>& progress) {
           return false;
         }
         if (after_step) after_step(*this, static_cast<int>(c));
+        if (failed_) return false;
         for (size_t e = 0; e <= c; ++e) {
           if (!components_[e]->finished()) {
             c = e;

@@ -88,6 +88,13 @@ class Simulation {
   void ReleaseAt(int var, double t);
   bool Held(int var, double t) const;
 
+  // Stops the run with `message` (an observer found a problem it cannot
+  // resolve); Run and StepOnce then return false and error() says why.
+  void Fail(const std::string& message) {
+    failed_ = true;
+    error_ = message;
+  }
+
   // Called after every accepted step of a component (collision detection).
   std::function<void(Simulation&, int component)> after_step;
   // Called for each component truncated, with the time it keeps, and once

@@ -301,6 +301,22 @@ TEST(Collision, TheSeedFigure511SceneHasExactlyItsImpactsAndIdleBodiesAreNeverRo
   EXPECT_GT(run.simulation->totals().truncated_steps, 0);
 }
 
+TEST(Collision, ImpactsThatDoNotResolveEndWithAReportNotAHang) {
+  // Eight balls in a walled box at a tolerance of 0.1: positions are so loose
+  // that a ball jams against a wall.  The run must end — simulated, or with a
+  // report naming the bodies and the time.
+  app::RunOptions opts;
+  opts.solver.rtol = opts.solver.atol = 0.1;
+  const SceneRun run = app::Simulate(ReadSample("../tests/solver/data/balls_in_box8.al"), opts);
+  if (!run.ok) {
+    EXPECT_NE(run.solver_error.find("do not resolve at t="), std::string::npos) << run.solver_error;
+  }
+  opts.solver.rtol = opts.solver.atol = 0.01;
+  const SceneRun tight = app::Simulate(ReadSample("../tests/solver/data/balls_in_box8.al"), opts);
+  EXPECT_TRUE(tight.ok) << tight.solver_error;
+  EXPECT_GT(tight.collisions->impacts().size(), 10u);
+}
+
 TEST(Collision, TruncationAfterAnImpactReproducesTheRunBitForBit) {
   const std::string text = Sphere(0.5) +
                            "body a -shape ball -mass 1 -init_pos {0 0 0} -init_dpos {2 0 0}\n"
