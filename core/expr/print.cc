@@ -152,11 +152,13 @@ class Printer {
         out.push_back(Text("t"));
         return kPrimary;
       case Op::kVar:
-        out.push_back(Text(var_name_ ? var_name_(n.index) : "x" + std::to_string(n.index)));
+        // (append, not "x" + string: GCC 12 -O3 warns falsely, -Wrestrict)
+        out.push_back(Text(var_name_ ? var_name_(n.index)
+                                     : std::string("x").append(std::to_string(n.index))));
         return kPrimary;
       case Op::kExtern: {
-        std::string s = "ext" + std::to_string(n.index);
-        if (n.order != 0) s += ".d" + std::to_string(n.order);
+        std::string s = std::string("ext").append(std::to_string(n.index));
+        if (n.order != 0) s.append(".d").append(std::to_string(n.order));
         out.push_back(Text(std::move(s)));
         return kPrimary;
       }
