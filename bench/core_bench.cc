@@ -14,6 +14,7 @@
 #include <sstream>
 
 #include "core/app/pipeline.h"
+#include "core/session/session.h"
 #include "tests/solver/reference_problems.h"
 
 namespace {
@@ -112,6 +113,38 @@ void BM_StiffLink(benchmark::State& state) {
   }
 }
 BENCHMARK(BM_StiffLink)->DenseRange(2, 8, 2)->Unit(benchmark::kMillisecond);
+
+// Editing latency (issue: multiple-representation editing).  "Update": a
+// language view hands over the seed pendulum's text and waits until its
+// motion is simulated.  "Drag": a graphical view moves the ball's initial
+// velocity (a text patch) and waits for the incremental re-simulation.
+void BM_UpdateToSimulated(benchmark::State& state) {
+  const std::string text = ReadSample("pendulum.al");
+  for (auto _ : state) {
+    asgard::session::Session session(text);
+    benchmark::DoNotOptimize(session.Simulate());
+  }
+}
+BENCHMARK(BM_UpdateToSimulated)->Unit(benchmark::kMillisecond);
+
+void BM_DragToResimulated(benchmark::State& state) {
+  asgard::session::Session session(ReadSample("pendulum.al"));
+  session.Simulate();
+  double vx = -3.0;
+  long reset = 0, steps = 0, runs = 0;
+  for (auto _ : state) {
+    vx -= 0.01;  // each drag moves the handle a little
+    session.SetParameter("b3", "init_dpos", {vx, 0, 0});
+    benchmark::DoNotOptimize(session.Simulate());
+    reset += session.last_stats().components_reset;
+    steps += session.last_stats().steps;
+    ++runs;
+  }
+  state.counters["components_reset"] = static_cast<double>(reset) / std::max(1L, runs);
+  state.counters["steps"] = static_cast<double>(steps) / std::max(1L, runs);
+  state.counters["components"] = session.last_stats().components;
+}
+BENCHMARK(BM_DragToResimulated)->Unit(benchmark::kMillisecond);
 
 }  // namespace
 
