@@ -20,30 +20,11 @@ packages=(
   ghostscript poppler-utils povray chromium nodejs
 )
 
-missing=()
-for p in "${packages[@]}"; do
-  if ! dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q 'install ok installed'; then
-    missing+=("$p")
-  fi
-done
-
-if [ "${1:-}" = "--check" ]; then
-  if [ ${#missing[@]} -eq 0 ]; then echo "all dependencies present"; exit 0; fi
-  echo "missing: ${missing[*]}"; exit 1
-fi
-
-if [ ${#missing[@]} -eq 0 ]; then
-  echo "install-deps: all ${#packages[@]} packages already installed"
-  exit 0
-fi
-
-echo "install-deps: installing ${missing[*]}"
-sudo_cmd=()
-if [ "$(id -u)" -ne 0 ]; then sudo_cmd=(sudo); fi
-export DEBIAN_FRONTEND=noninteractive
-"${sudo_cmd[@]}" apt-get update -q
-"${sudo_cmd[@]}" apt-get install -y -q --no-install-recommends "${missing[@]}"
+source "$(dirname "$0")/lib/apt-install.sh"
+apt_install install-deps "${1:-}" "${packages[@]}"
 # npm ships inside some nodejs packages; install Debian's only when absent.
-if ! command -v npm >/dev/null 2>&1; then
+if [ "${1:-}" != "--check" ] && ! command -v npm >/dev/null 2>&1; then
+  sudo_cmd=()
+  if [ "$(id -u)" -ne 0 ]; then sudo_cmd=(sudo); fi
   "${sudo_cmd[@]}" apt-get install -y -q --no-install-recommends npm
 fi
