@@ -7,6 +7,8 @@
 #include <random>
 #include <sstream>
 
+#include "core/physics/joints.h"
+
 namespace asgard::bench {
 
 namespace {
@@ -346,9 +348,19 @@ TapeOde::TapeOde(const std::string& text) {
   expr::Pool pool = eq.pool;
   std::vector<expr::NodeId> rhs;
   for (const auto& v : eq.variables) rhs.push_back(v.rhs);
-  // Jacobian entries by column.
+  // Jacobian entries by column.  Exact joints have no symbolic form: their
+  // Jacobian is dense and taken by difference quotients.
   std::vector<std::vector<std::pair<int, expr::NodeId>>> cols(n_);
-  for (int i = 0; i < n_; ++i)
+  if (!eq.joints.empty()) {
+    std::vector<int> joints(eq.joints.size()), local_first;
+    for (size_t j = 0; j < joints.size(); ++j) joints[j] = static_cast<int>(j);
+    for (const auto& b : eq.bodies) local_first.push_back(b.first_var);
+    joints_ = std::make_shared<physics::JointSolver>(eq, joints, local_first);
+    prescribed_.assign(n_, 0);
+    for (int j = 0; j < n_; ++j)
+      for (int i = 0; i < n_; ++i) cols[j].push_back({i, pool.Const(0.0)});
+  }
+  for (int i = 0; i < n_ && !joints_; ++i)
     for (int j : pool.Variables(rhs[i])) cols[j].push_back({i, pool.Derivative(rhs[i], j)});
   std::vector<expr::NodeId> jac;
   col_ptr_.push_back(0);
@@ -373,11 +385,26 @@ TapeOde::TapeOde(const std::string& text) {
 void TapeOde::Rhs(double t, const double* y, double* f) const {
   ++rhs_count;
   rhs_->Evaluate(t, y, f, &ext_);
+  if (joints_) joints_->Apply(t, y, f, prescribed_.data(), &ext_);
 }
 
 void TapeOde::Jacobian(double t, const double* y, double* values) const {
   ++jac_count;
-  jac_->Evaluate(t, y, values, &ext_);
+  if (!joints_) {
+    jac_->Evaluate(t, y, values, &ext_);
+    return;
+  }
+  // Dense, column by column (CSC order is column-major).
+  std::vector<double> yp(y, y + n_), f0(n_), f1(n_);
+  Rhs(t, y, f0.data());
+  for (int c = 0; c < n_; ++c) {
+    const double d = std::sqrt(std::numeric_limits<double>::epsilon()) * std::max(std::abs(y[c]), 1e-3);
+    yp[c] = y[c] + d;
+    Rhs(t, yp.data(), f1.data());
+    const double step = yp[c] - y[c];
+    yp[c] = y[c];
+    for (int r = 0; r < n_; ++r) values[static_cast<size_t>(c) * n_ + r] = (f1[r] - f0[r]) / step;
+  }
 }
 
 std::vector<Pose> TapeOde::Poses(const double* y) const {

@@ -12,6 +12,10 @@
 #include "core/app/pipeline.h"
 #include "core/expr/expr.h"
 
+namespace asgard::physics {
+class JointSolver;
+}
+
 namespace asgard::bench {
 
 // The ideal (rigid-joint) form of a pendulum scene, for the engines that
@@ -110,6 +114,8 @@ class TapeOde {
   std::vector<BodyInfo> bodies_;
   std::unique_ptr<physics::EquationSystem> eq_;
   expr::ExternFn ext_;
+  std::shared_ptr<physics::JointSolver> joints_;  // exact links, if any
+  std::vector<char> prescribed_;
 };
 
 // Exact references.

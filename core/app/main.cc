@@ -2,7 +2,7 @@
 //
 //   asgard check FILE
 //   asgard simulate FILE [--until T] [--rtol R] [--atol A] [--out FILE.csv|FILE.json]
-//                        [--stats] [--method auto|tr|trbdf2] [--single] [--sequential]
+//                        [--stats] [--method auto|dp5|tr|trbdf2] [--single] [--sequential]
 //
 // Exit status: 0 success, 1 scene errors or solver failure, 2 usage errors.
 #include <unistd.h>
@@ -79,7 +79,8 @@ Options:
   --out FILE        write body trajectories sampled at the frame rate
                     (simulator -frames, default 30 per second): .csv or .json
   --stats           print the components (their variables) and solver counters
-  --method M        auto (default: trapezoidal, TR-BDF2 where stiff), tr, trbdf2
+  --method M        auto (default: Dormand-Prince 5(4) where a component is not stiff,
+                    TR / TR-BDF2 where it is), dp5, tr, trbdf2
   --single          solve all equations as one component (no partitioning)
   --sequential      run components to completion one after another
                     (no event-driven scheduling)
@@ -173,6 +174,8 @@ nlohmann::json CountersJson(const asgard::solver::Counters& c) {
   return {{"steps", c.steps},
           {"rejected_steps", c.rejected_steps},
           {"trbdf2_steps", c.trbdf2_steps},
+          {"explicit_steps", c.explicit_steps},
+          {"method_switches", c.method_switches},
           {"rhs_evaluations", c.rhs_evaluations},
           {"jacobian_evaluations", c.jacobian_evaluations},
           {"factorizations", c.factorizations},
@@ -214,8 +217,9 @@ bool WriteJson(const std::string& path, const std::string& scene_file, const Fra
 }
 
 void PrintCounters(std::ostream& out, const asgard::solver::Counters& c) {
-  out << "  steps " << c.steps << " (rejected " << c.rejected_steps << ", TR-BDF2 " << c.trbdf2_steps
-      << "), rhs evaluations " << c.rhs_evaluations << ", jacobians " << c.jacobian_evaluations
+  out << "  steps " << c.steps << " (rejected " << c.rejected_steps << ", explicit "
+      << c.explicit_steps << ", TR-BDF2 " << c.trbdf2_steps << ", method switches "
+      << c.method_switches << "), rhs evaluations " << c.rhs_evaluations << ", jacobians " << c.jacobian_evaluations
       << ", factorizations " << c.factorizations << ", newton iterations " << c.newton_iterations
       << " (failures " << c.newton_failures << "), truncated steps " << c.truncated_steps
       << ", restarts " << c.restarts << "\n";
@@ -405,7 +409,8 @@ int Simulate(const std::vector<std::string>& args) {
       if (v == "auto") opts.solver.method = asgard::solver::SolverOptions::Method::kAuto;
       else if (v == "tr") opts.solver.method = asgard::solver::SolverOptions::Method::kTrapezoidal;
       else if (v == "trbdf2") opts.solver.method = asgard::solver::SolverOptions::Method::kTrBdf2;
-      else return Usage("--method must be auto, tr or trbdf2", kSimulateHelp);
+      else if (v == "dp5") opts.solver.method = asgard::solver::SolverOptions::Method::kExplicit;
+      else return Usage("--method must be auto, dp5, tr or trbdf2", kSimulateHelp);
     } else if (a == "--stats") {
       stats = true;
     } else if (a == "--quiet") {

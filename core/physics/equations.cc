@@ -25,6 +25,10 @@ using expr::NodeId;
 using V3 = std::array<NodeId, 3>;
 using M3 = std::array<std::array<NodeId, 3>, 3>;
 
+// The spring constant of a link without -tightness whose point cannot be an
+// exact joint (it moves with other bodies' state); the seed's default.
+constexpr double kFallbackTightness = 1000.0;
+
 constexpr const char* kSlotNames[kBodySlots] = {"x",  "y",  "z",  "dx", "dy", "dz", "qw",
                                                 "qx", "qy", "qz", "w1", "w2", "w3"};
 
@@ -419,6 +423,8 @@ class Builder {
     V3 p2, v2;
     double m = sys_.bodies[b1].mass;
     int b2 = -1;
+    Joint joint;
+    joint.span = l.command;
     if (!l.body2.empty()) {
       b2 = BodyIndex(l, l.body2, "body2");
       if (b2 < 0) return;
@@ -426,6 +432,9 @@ class Builder {
       const double m2 = sys_.bodies[b2].mass;
       if (sys_.bodies[b1].is_static) m = m2;
       else if (!sys_.bodies[b2].is_static) m = m * m2 / (m + m2);
+      joint.p = p2;
+      joint.p_dot = v2;
+      joint.p_ddot = {P.Const(0.0), P.Const(0.0), P.Const(0.0)};
     } else if (!l.trajectory.empty()) {
       auto c = curve_index_.find(l.trajectory);
       if (c == curve_index_.end()) {
@@ -435,21 +444,74 @@ class Builder {
       for (int a = 0; a < 3; ++a) {
         p2[a] = P.Extern(3 * c->second + a, 0);
         v2[a] = P.Extern(3 * c->second + a, 1);
+        joint.p_ddot[a] = P.Extern(3 * c->second + a, 2);
       }
+      joint.p = p2;
+      joint.p_dot = v2;
     } else {
       auto pt = ParseVector(l, l.point);
       if (!pt) return;
       p2 = *pt;
-      for (int a = 0; a < 3; ++a) v2[a] = KinematicRate(p2[a]);
+      for (int a = 0; a < 3; ++a) {
+        v2[a] = KinematicRate(p2[a]);
+        joint.p_ddot[a] = P.TimeDerivative(P.TimeDerivative(p2[a]));
+      }
+      joint.p = p2;
+      joint.p_dot = v2;
     }
-    const double k = l.tightness;
+    if (b2 >= 0) sys_.body_links.emplace_back(b1, b2);
+    if (l.tightness == 0.0 && AddJoint(joint, b1, l.offset1, b2, l.offset2)) return;
+    // A spring: the link's own constant, or (exact link whose point moves
+    // with other bodies' state) the seed's default.
+    const double k = l.tightness > 0.0 ? l.tightness : kFallbackTightness;
     const double c = 2.0 * std::sqrt(k * m);
     const V3 F = Sub(Scale(P.Const(-k), Sub(p1, p2)), Scale(P.Const(c), Sub(v1, v2)));
     ApplyForce(b1, F, Sub(p1, kin_[b1].p));
-    if (b2 >= 0) {
-      ApplyForce(b2, Scale(P.Const(-1.0), F), Sub(p2, kin_[b2].p));
-      sys_.body_links.emplace_back(b1, b2);
+    if (b2 >= 0) ApplyForce(b2, Scale(P.Const(-1.0), F), Sub(p2, kin_[b2].p));
+  }
+
+  // Records an exact joint; false when it cannot be one (both ends fixed, or
+  // a point that depends on state, whose second derivative is not known).
+  bool AddJoint(Joint j, int b1, const scene::Vec3& offset1, int b2, const scene::Vec3& offset2) {
+    auto anchor = [&](int b, const scene::Vec3& off) {
+      return Eigen::Vector3d(ToEigen(off) - sys_.bodies[b].centroid);
+    };
+    if (b2 >= 0 && sys_.bodies[b2].is_static) {
+      // A static partner is a fixed point of space.
+      const BodyModel& s = sys_.bodies[b2];
+      const Eigen::Vector3d p = s.x0 + s.q0.toRotationMatrix() * anchor(b2, offset2);
+      for (int a = 0; a < 3; ++a) {
+        j.p[a] = P.Const(p[a]);
+        j.p_dot[a] = j.p_ddot[a] = P.Const(0.0);
+      }
+      b2 = -1;
     }
+    if (sys_.bodies[b1].is_static) {
+      if (b2 < 0) return true;  // both ends fixed: nothing moves
+      std::swap(b1, b2);
+      const Eigen::Vector3d p =
+          sys_.bodies[b2].x0 + sys_.bodies[b2].q0.toRotationMatrix() * anchor(b2, offset1);
+      j.body_a = b1;
+      j.s_a = anchor(b1, offset2);
+      for (int a = 0; a < 3; ++a) {
+        j.p[a] = P.Const(p[a]);
+        j.p_dot[a] = j.p_ddot[a] = P.Const(0.0);
+      }
+      j.body_b = -1;
+      sys_.joints.push_back(j);
+      return true;
+    }
+    j.body_a = b1;
+    j.s_a = anchor(b1, offset1);
+    j.body_b = b2;
+    if (b2 >= 0) {
+      j.s_b = anchor(b2, offset2);
+    } else {
+      for (int a = 0; a < 3; ++a)
+        if (!P.Variables(j.p[a]).empty() || !P.Variables(j.p_ddot[a]).empty()) return false;
+    }
+    sys_.joints.push_back(j);
+    return true;
   }
 
   // d/dt of an expression point: explicit time dependence plus the chain rule
@@ -648,8 +710,20 @@ class Builder {
 
   void Breakpoints() {
     const double t0 = sys_.t0, t1 = sys_.t1;
-    for (auto& v : sys_.variables) {
+    // A joint's point acts on the rates of its body's velocity rows.
+    std::map<int, std::vector<NodeId>> joint_exprs;
+    for (const Joint& j : sys_.joints) {
+      if (j.body_b >= 0) continue;
+      const int v0 = sys_.bodies[j.body_a].first_var;
+      for (int slot : {kDx, kDy, kDz, kW1, kW2, kW3})
+        for (int a = 0; a < 3; ++a)
+          for (NodeId e : {j.p[a], j.p_dot[a], j.p_ddot[a]}) joint_exprs[v0 + slot].push_back(e);
+    }
+    for (size_t vi = 0; vi < sys_.variables.size(); ++vi) {
+      auto& v = sys_.variables[vi];
       std::vector<NodeId> exprs{v.rhs};
+      if (auto it = joint_exprs.find(static_cast<int>(vi)); it != joint_exprs.end())
+        exprs.insert(exprs.end(), it->second.begin(), it->second.end());
       std::vector<double> bps;
       for (const Override& o : v.overrides) {
         exprs.push_back(o.expr);

@@ -18,7 +18,12 @@
 // axes stay decoupled and partition finely (seed Figure 5.8).  World-axis ω
 // would put the time-varying I_W into every equation.
 //
-// Links are critically damped springs (seed 5.1.2):
+// A link without -tightness is an exact joint (a ball joint: the two points
+// coincide).  Its force is not an expression: it is solved from the
+// constraint at every evaluation of the rates (physics/joints.h), so the
+// equations hold the free rates and `joints` lists what the solver must add.
+// A link with -tightness K keeps the seed's meaning (5.1.2), a critically
+// damped spring:
 //   F = −k (p₁ − p₂) − 2 √(k m) (ṗ₁ − ṗ₂)
 // with m the attached body's mass (object–point) or the reduced mass
 // m₁m₂/(m₁+m₂) (object–object), so the relative motion of two free bodies is
@@ -100,6 +105,20 @@ struct BodyModel {
 
 struct TrajectoryCurve;  // piecewise cubic Bézier, see trajectory.h
 
+// An exact ball joint: point s_a of body a coincides with point s_b of body b,
+// or (body_b < 0) with the point p(t) of space.  Anchors are in body axes
+// from the centre of mass.
+struct Joint {
+  int body_a = -1;
+  Eigen::Vector3d s_a = Eigen::Vector3d::Zero();
+  int body_b = -1;
+  Eigen::Vector3d s_b = Eigen::Vector3d::Zero();
+  // body_b < 0: the point and its first two time derivatives (functions of t
+  // only: constants, expressions of t, trajectories).
+  std::array<expr::NodeId, 3> p{}, p_dot{}, p_ddot{};
+  scene::SourceSpan span;  // the link command
+};
+
 // The whole system: variables, equations, and what the solver needs to know
 // about time (breakpoints) and about bodies (for collisions and output).
 struct EquationSystem {
@@ -108,6 +127,7 @@ struct EquationSystem {
   std::vector<BodyModel> bodies;
   std::vector<std::shared_ptr<const TrajectoryCurve>> curves;  // Extern fn = 3*curve + axis
   std::vector<std::pair<int, int>> body_links;  // bodies joined by a link (for artbody rules)
+  std::vector<Joint> joints;                      // exact links
   double t0 = 0.0;
   double t1 = 10.0;
   std::vector<scene::Diagnostic> diagnostics;

@@ -139,10 +139,12 @@ struct Body : ElementBase {
   bool is_static = false;
 };
 
-// Link: a critically damped zero-length spring between a point on body1 and
+// Link: joins a point on body1 to
 //   (a) a point on body2                     -body2 B -offset2 V
 //   (b) a fixed point or expression point    -x EX -y EY -z EZ
 //   (c) a trajectory                         -trajectory T
+// exactly (a ball joint) by default, or with -tightness K as the seed's
+// critically damped zero-length spring of constant K.
 struct Link : ElementBase {
   std::string body1;
   Vec3 offset1{0, 0, 0};
@@ -150,7 +152,7 @@ struct Link : ElementBase {
   Vec3 offset2{0, 0, 0};
   std::array<std::string, 3> point{"0", "0", "0"};  // expressions (case b)
   std::string trajectory;
-  double tightness = 1000.0;
+  double tightness = 0.0;  // 0 (no -tightness): an exact joint; else a spring constant
 };
 
 // force -body B -x EX -y EY -z EZ ?-offset V? ?-gravitational 0|1? ?-torque 0|1?

@@ -8,6 +8,7 @@
 #include <sstream>
 
 #include "core/physics/equations.h"
+#include "core/physics/joints.h"
 #include "core/solver/simulation.h"
 
 namespace asgard::solver {
@@ -22,7 +23,51 @@ const double kErrC = (-3 * kGamma * kGamma + 4 * kGamma - 2) / (12 * (2 - kGamma
 // observed contraction rate, is below this fraction of the tolerance.
 constexpr double kNewtonTol = 0.02;
 constexpr int kNewtonMaxIter = 10;
-constexpr double kStiffness = 3.0;
+// TR-BDF2 instead of TR when h·ρ(J) exceeds this: TR's amplification tends to
+// −1 for stiff modes, so a mode with hλ beyond ~3 rings instead of decaying.
+constexpr double kTrStiffness = 3.0;
+// Dormand–Prince is stable along the negative real axis up to hλ ≈ 3.3; a
+// step whose estimated hρ exceeds this is held down by stability, not accuracy.
+constexpr double kExplicitStability = 3.25;
+// An implicit step with hρ below this could have been taken explicitly.
+constexpr double kExplicitComfort = 1.0;
+// Steps that must argue for the other method before it changes (one noisy
+// estimate must not flip it back and forth); an explicit step size hovering
+// at the stability limit alternates between looking stiff and not, so only
+// kCalmVotes consecutive calm steps clear the stiff votes (as in Hairer's
+// DOPRI5 detector).
+constexpr int kSwitchVotes = 15;
+constexpr int kCalmVotes = 6;
+// Spectral radius (1/s) above which a component starts implicitly: an
+// explicit step would be limited by stability to below ~1.6 ms, shorter than
+// accuracy needs for motion sampled at frame rates.
+constexpr double kStartStiffRho = 2000.0;
+
+// Dormand–Prince 5(4), FSAL, with its 4th-order continuous extension
+// (Dormand & Prince 1980; dense output coefficients of Hairer, Nørsett &
+// Wanner, Solving ODEs I, II.6).
+namespace dp {
+constexpr double c2 = 1.0 / 5, c3 = 3.0 / 10, c4 = 4.0 / 5, c5 = 8.0 / 9;
+constexpr double a21 = 1.0 / 5;
+constexpr double a31 = 3.0 / 40, a32 = 9.0 / 40;
+constexpr double a41 = 44.0 / 45, a42 = -56.0 / 15, a43 = 32.0 / 9;
+constexpr double a51 = 19372.0 / 6561, a52 = -25360.0 / 2187, a53 = 64448.0 / 6561,
+                 a54 = -212.0 / 729;
+constexpr double a61 = 9017.0 / 3168, a62 = -355.0 / 33, a63 = 46732.0 / 5247,
+                 a64 = 49.0 / 176, a65 = -5103.0 / 18656;
+constexpr double a71 = 35.0 / 384, a73 = 500.0 / 1113, a74 = 125.0 / 192,
+                 a75 = -2187.0 / 6784, a76 = 11.0 / 84;
+// error = 5th − 4th order solution
+constexpr double e1 = 71.0 / 57600, e3 = -71.0 / 16695, e4 = 71.0 / 1920,
+                 e5 = -17253.0 / 339200, e6 = 22.0 / 525, e7 = -1.0 / 40;
+// bubble of the continuous extension
+constexpr double d1 = -12715105075.0 / 11282082432, d3 = 87487479700.0 / 32700410799,
+                 d4 = -10690763975.0 / 1880347072, d5 = 701980252875.0 / 199316789632,
+                 d6 = -1453857185.0 / 822651844, d7 = 69997945.0 / 29380423;
+// PI step control (Gustafsson): h_new = h · safety · err^−α · err_prev^β.
+constexpr double kBeta = 0.04, kAlpha = 0.2 - 0.75 * kBeta, kSafety = 0.9;
+constexpr double kMinFactor = 0.2, kMaxFactor = 10.0;
+}  // namespace dp
 
 }  // namespace
 
@@ -30,6 +75,8 @@ Counters& Counters::operator+=(const Counters& o) {
   steps += o.steps;
   rejected_steps += o.rejected_steps;
   trbdf2_steps += o.trbdf2_steps;
+  explicit_steps += o.explicit_steps;
+  method_switches += o.method_switches;
   rhs_evaluations += o.rhs_evaluations;
   jacobian_evaluations += o.jacobian_evaluations;
   factorizations += o.factorizations;
@@ -50,20 +97,24 @@ struct Component::Mode {
   std::vector<int> mrow, mcol;      // matrix pattern: n diagonal entries, then jrow/jcol
   std::vector<double> jvals, mvals, out;
   std::unique_ptr<LinearSolver> solver;
-  double rho = 0.0;                 // ‖J‖∞ over ODE rows
+  bool any_prescribed = false;
 };
 
 struct Component::Attempt {
-  bool ok = false;
   bool trbdf2 = false;
+  bool explicit_step = false;
   double err = 0.0;
+  double h_rho = 0.0;  // explicit: stiffness estimate h·ρ from the last stages
 };
 
 Component::Component(Simulation& sim, int index, std::vector<int> vars)
     : sim_(sim), sys_(sim.system()), index_(index), vars_(std::move(vars)),
       wave_(static_cast<int>(vars_.size())) {
   const size_t n = vars_.size();
-  for (auto* v : {&x_, &f_, &y_, &fy_, &yg_, &fg_, &c_, &r_, &est_, &rate_, &w_}) v->assign(n, 0.0);
+  for (auto* v : {&x_, &y_, &fy_, &yg_, &fg_, &c_, &r_, &est_, &rate_, &rowsum_, &pv_, &pw_,
+                  &bubble_})
+    v->assign(n, 0.0);
+  for (auto& k : k_) k.assign(n, 0.0);
 }
 
 Component::~Component() = default;
@@ -99,6 +150,19 @@ void Component::Initialize() {
   std::sort(static_breakpoints_.begin(), static_breakpoints_.end());
   static_breakpoints_.erase(std::unique(static_breakpoints_.begin(), static_breakpoints_.end()),
                             static_breakpoints_.end());
+  // Exact joints whose bodies are ours (a jointed group is always whole).
+  std::vector<int> joints;
+  for (size_t j = 0; j < sys_.joints.size(); ++j)
+    if (sim_.component_of(sys_.bodies[sys_.joints[j].body_a].first_var) == index_)
+      joints.push_back(static_cast<int>(j));
+  if (!joints.empty()) {
+    std::vector<int> local_first(sys_.bodies.size(), -1);
+    for (size_t b = 0; b < sys_.bodies.size(); ++b) {
+      const int v = sys_.bodies[b].first_var;
+      if (v >= 0 && sim_.component_of(v) == index_) local_first[b] = sim_.local_index(v);
+    }
+    joints_ = std::make_unique<physics::JointSolver>(sys_, std::move(joints), local_first);
+  }
 
   StartSample();
 }
@@ -110,16 +174,17 @@ void Component::StartSample() {
   for (size_t j = 0; j < n; ++j) x_[j] = sys_.variables[vars_[j]].initial;
   std::vector<double> zero(n, 0.0);
   wave_.Resize(0);
-  wave_.Append(sys_.t0, x_.data(), zero.data(), {0.0, false});
+  wave_.Append(sys_.t0, x_.data(), zero.data(), SampleInfo{});
   const long restarts = counters_.restarts;
   Restart();
   counters_.restarts = restarts;
   // The restart sample replaces the provisional one.
   const int last = wave_.size() - 1;
   std::vector<double> x(wave_.x(last), wave_.x(last) + n), f(wave_.f(last), wave_.f(last) + n);
-  const SampleInfo info = wave_.info(last);
+  SampleInfo info = wave_.info(last);
   wave_.Resize(0);
   wave_.Append(sys_.t0, x.data(), f.data(), info);
+  wave_.info(0).implicit = InitialImplicit(sys_.t0);
   jac_sample_ = -1;
 }
 
@@ -164,7 +229,6 @@ Component::Mode& Component::ModeAt(double t) {
   auto it = modes_.find(key);
   if (it == modes_.end()) it = modes_.emplace(key, BuildMode(key, t)).first;
   last_mode_ = it->second.get();
-  last_key_ = key;
   return *last_mode_;
 }
 
@@ -200,7 +264,12 @@ std::unique_ptr<Component::Mode> Component::BuildMode(const std::string& key, do
     }
   }
   std::vector<expr::NodeId> all = outputs;
-  for (int j = 0; j < n; ++j) {
+  for (int j = 0; j < n && joints_; ++j)
+    for (int c = 0; c < n; ++c) {
+      m->jrow.push_back(j);
+      m->jcol.push_back(c);
+    }
+  for (int j = 0; j < n && !joints_; ++j) {
     for (int v : pool.Variables(outputs[j])) {
       auto it = std::lower_bound(vars_.begin(), vars_.end(), v);
       if (it == vars_.end() || *it != v) continue;
@@ -224,6 +293,9 @@ std::unique_ptr<Component::Mode> Component::BuildMode(const std::string& key, do
   m->mvals.assign(m->mrow.size(), 0.0);
   m->out.assign(all.size(), 0.0);
   m->solver = LinearSolver::Create(n, m->mrow, m->mcol, sim_.options().dense_limit);
+  m->any_prescribed = std::any_of(m->prescribed.begin(), m->prescribed.end(),
+                                  [](char p) { return p != 0; });
+  gdot_.resize(std::max(gdot_.size(), m->gdot_rows.size()));
   return m;
 }
 
@@ -243,24 +315,61 @@ void Component::EvalF(const Mode& m, double t, const double* y, double* out, Sid
   if (side == Side::kRight) te = std::nextafter(t, std::numeric_limits<double>::infinity());
   const expr::ExternFn& ext = sim_.externs();
   m.f_tape.Evaluate(te, sim_.values(), out, &ext);
+  if (joints_) joints_->Apply(te, sim_.values(), out, m.prescribed.data(), &ext);
   ++counters_.rhs_evaluations;
 }
 
 void Component::EvalJacobian(Mode& m, double t, const double* y) {
+  if (joints_) return EvalJacobianNumerically(m, t, y);
   Load(t, y, Side::kRight);
   const expr::ExternFn& ext = sim_.externs();
   m.fj_tape.Evaluate(t, sim_.values(), m.out.data(), &ext);
   ++counters_.jacobian_evaluations;
   const size_t n = vars_.size();
-  std::vector<double> rowsum(n, 0.0);
-  for (size_t k = 0; k < m.jrow.size(); ++k) {
-    m.jvals[k] = m.out[n + k];
-    rowsum[m.jrow[k]] += std::abs(m.jvals[k]);
-  }
-  m.rho = 0.0;
-  for (size_t j = 0; j < n; ++j)
-    if (!m.prescribed[j]) m.rho = std::max(m.rho, rowsum[j]);
+  for (size_t k = 0; k < m.jrow.size(); ++k) m.jvals[k] = m.out[n + k];
   factored_a_ = -1;
+}
+
+void Component::EvalJacobianNumerically(Mode& m, double t, const double* y) {
+  const size_t n = vars_.size();
+  std::copy(y, y + n, pv_.begin());
+  EvalF(m, t, pv_.data(), c_.data(), Side::kRight, false);
+  const double root_eps = std::sqrt(std::numeric_limits<double>::epsilon());
+  for (size_t col = 0; col < n; ++col) {
+    const double saved = pv_[col];
+    const double d = root_eps * std::max(std::abs(saved), 1e-3);
+    pv_[col] = saved + d;
+    EvalF(m, t, pv_.data(), pw_.data(), Side::kRight, false);
+    pv_[col] = saved;
+    const double step = (saved + d) - saved;
+    for (size_t row = 0; row < n; ++row) m.jvals[row * n + col] = (pw_[row] - c_[row]) / step;
+  }
+  ++counters_.jacobian_evaluations;
+  factored_a_ = -1;
+}
+
+// Power iteration on J restricted to the ODE rows, from a fixed start vector
+// (deterministic).  A complex pair makes the iterates rotate rather than
+// converge, but the growth ratio still measures |λ|, which is what the
+// stability limits depend on.
+double Component::SpectralRadius(const Mode& m) {
+  const size_t n = vars_.size();
+  for (size_t j = 0; j < n; ++j) pv_[j] = m.prescribed[j] ? 0.0 : 1.0 + 0.37 * double(j % 7);
+  double rho = 0.0;
+  for (int it = 0; it < 12; ++it) {
+    double norm_v = 0.0;
+    for (size_t j = 0; j < n; ++j) norm_v = std::max(norm_v, std::abs(pv_[j]));
+    if (norm_v == 0.0) return 0.0;
+    std::fill(pw_.begin(), pw_.end(), 0.0);
+    for (size_t k = 0; k < m.jrow.size(); ++k)
+      if (!m.prescribed[m.jrow[k]] && !m.prescribed[m.jcol[k]])
+        pw_[m.jrow[k]] += m.jvals[k] * pv_[m.jcol[k]] / norm_v;
+    double norm_w = 0.0;
+    for (size_t j = 0; j < n; ++j) norm_w = std::max(norm_w, std::abs(pw_[j]));
+    if (it >= 8) rho = std::max(rho, norm_w);  // last iterations: rotation-safe
+    std::swap(pv_, pw_);
+  }
+  return std::isfinite(rho) ? rho : std::numeric_limits<double>::infinity();
 }
 
 bool Component::FactorMatrix(Mode& m, double a) {
@@ -332,10 +441,10 @@ void Component::Rates(const Mode& m, double t, const double* y, const double* fy
     else rate[j] = h > 0 ? (y[j] - y0[j]) / h : 0.0;
   }
   if (m.gdot_rows.empty()) return;
-  std::vector<double> g(m.gdot_rows.size());
+  double* g = gdot_.data();
   double te = side == Side::kRight ? std::nextafter(t, std::numeric_limits<double>::infinity()) : t;
   const expr::ExternFn& ext = sim_.externs();
-  m.gdot_tape.Evaluate(te, sim_.values(), g.data(), &ext);
+  m.gdot_tape.Evaluate(te, sim_.values(), g, &ext);
   for (size_t i = 0; i < m.gdot_rows.size(); ++i) rate[m.gdot_rows[i]] = g[i];
 }
 
@@ -350,15 +459,15 @@ bool Component::TryStep(double h, bool landing, Attempt& out) {
   Mode& m = ModeAt(t);
   if (jac_sample_ != k || jac_mode_ != &m) {
     EvalJacobian(m, t, x);
+    rho_ = SpectralRadius(m);
     jac_sample_ = k;
     jac_mode_ = &m;
   }
   const bool history = k >= 1 && !wave_.info(k).restart;
   const SolverOptions::Method method = sim_.options().method;
-  out.trbdf2 = method == SolverOptions::Method::kTrBdf2 ||
-               (method == SolverOptions::Method::kAuto && (!history || h * m.rho > kStiffness)) ||
-               !history;
-  out.ok = false;
+  out.trbdf2 = !history || method == SolverOptions::Method::kTrBdf2 ||
+               (method != SolverOptions::Method::kTrapezoidal && h * rho_ > kTrStiffness);
+  out.h_rho = h * rho_;
   if (!out.trbdf2) {
     const double a = 0.5 * h;
     if (!FactorMatrix(m, a)) return false;
@@ -403,9 +512,78 @@ bool Component::TryStep(double h, bool landing, Attempt& out) {
   }
   out.err = WeightedNorm(est_.data(), x, y_.data());
   Rates(m, t + h, y_.data(), fy_.data(), x, h, rate_.data(), Side::kLeft);
-  out.ok = true;
   return true;
 }
+
+// One Dormand–Prince step from the last sample to t_end.  Stages reuse the
+// sample's rate (FSAL); the last stage's rate becomes the new sample's.
+bool Component::TryExplicitStep(const Mode& m, double t_end, bool landing, Attempt& out) {
+  const int k = wave_.size() - 1;
+  const size_t n = vars_.size();
+  const double t = wave_.time(k);
+  const double h = t_end - t;
+  const double* x = wave_.x(k);
+  std::copy(wave_.f(k), wave_.f(k) + n, k_[0].begin());
+  const double* k1 = k_[0].data();
+  double *k2 = k_[1].data(), *k3 = k_[2].data(), *k4 = k_[3].data(), *k5 = k_[4].data(),
+         *k6 = k_[5].data(), *k7 = k_[6].data();
+  using namespace dp;
+  for (size_t j = 0; j < n; ++j) y_[j] = x[j] + h * a21 * k1[j];
+  EvalF(m, t + c2 * h, y_.data(), k2, Side::kLeft, false);
+  for (size_t j = 0; j < n; ++j) y_[j] = x[j] + h * (a31 * k1[j] + a32 * k2[j]);
+  EvalF(m, t + c3 * h, y_.data(), k3, Side::kLeft, false);
+  for (size_t j = 0; j < n; ++j) y_[j] = x[j] + h * (a41 * k1[j] + a42 * k2[j] + a43 * k3[j]);
+  EvalF(m, t + c4 * h, y_.data(), k4, Side::kLeft, false);
+  for (size_t j = 0; j < n; ++j)
+    y_[j] = x[j] + h * (a51 * k1[j] + a52 * k2[j] + a53 * k3[j] + a54 * k4[j]);
+  EvalF(m, t + c5 * h, y_.data(), k5, Side::kLeft, false);
+  for (size_t j = 0; j < n; ++j)
+    yg_[j] = x[j] + h * (a61 * k1[j] + a62 * k2[j] + a63 * k3[j] + a64 * k4[j] + a65 * k5[j]);
+  EvalF(m, t_end, yg_.data(), k6, Side::kLeft, landing);
+  for (size_t j = 0; j < n; ++j)
+    y_[j] = x[j] + h * (a71 * k1[j] + a73 * k3[j] + a74 * k4[j] + a75 * k5[j] + a76 * k6[j]);
+  EvalF(m, t_end, y_.data(), k7, Side::kLeft, landing);
+  double num = 0.0, den = 0.0;
+  for (size_t j = 0; j < n; ++j) {
+    est_[j] = h * (e1 * k1[j] + e3 * k3[j] + e4 * k4[j] + e5 * k5[j] + e6 * k6[j] + e7 * k7[j]);
+    bubble_[j] =
+        h * (d1 * k1[j] + d3 * k3[j] + d4 * k4[j] + d5 * k5[j] + d6 * k6[j] + d7 * k7[j]);
+    num += (k7[j] - k6[j]) * (k7[j] - k6[j]);
+    den += (y_[j] - yg_[j]) * (y_[j] - yg_[j]);
+    rate_[j] = k7[j];
+  }
+  out.explicit_step = true;
+  out.h_rho = den > 0 ? h * std::sqrt(num / den) : 0.0;
+  out.err = WeightedNorm(est_.data(), x, y_.data());
+  if (!std::all_of(k7, k7 + n, [](double v) { return std::isfinite(v); }))
+    out.err = std::numeric_limits<double>::infinity();
+  return std::isfinite(out.err);
+}
+
+bool Component::UseImplicit(const Mode& m, const SampleInfo& info) const {
+  switch (sim_.options().method) {
+    case SolverOptions::Method::kTrapezoidal:
+    case SolverOptions::Method::kTrBdf2:
+      return true;
+    case SolverOptions::Method::kExplicit:
+      return m.any_prescribed;
+    case SolverOptions::Method::kAuto:
+      break;
+  }
+  return m.any_prescribed || info.implicit;
+}
+
+// The method a component starts with (kAuto): implicit when the spectral
+// radius of its Jacobian at t0 makes explicit steps stability-bound.
+bool Component::InitialImplicit(double t) {
+  if (sim_.options().method != SolverOptions::Method::kAuto) return false;
+  const int k = wave_.size() - 1;
+  Mode& m = ModeAt(t);
+  EvalJacobian(m, t, wave_.x(k));
+  jac_sample_ = -1;
+  return SpectralRadius(m) > kStartStiffRho;
+}
+
 
 namespace {
 struct Plan {
@@ -437,31 +615,68 @@ bool Component::Step() {
   const double h_max = o.max_step > 0 ? o.max_step : span;
   const double h_min = std::max(1e-13 * span, 8 * std::numeric_limits<double>::epsilon() *
                                                   std::abs(t));
-  double h = std::min(wave_.info(k).h_next, h_max);
+  const SampleInfo info = wave_.info(k);
+  const Mode& mode = ModeAt(t);
+  const bool implicit = UseImplicit(mode, info);
+  const bool auto_method = o.method == SolverOptions::Method::kAuto && !mode.any_prescribed;
+  double h = std::min(info.h_next, h_max);
   bool rejected = false;
   for (;;) {
     const Plan plan = PlanStep(t, h, NextBreakpoint(t), sys_.t1);
     const double h_eff = plan.t_end - t;
     Attempt att;
-    const bool ok = TryStep(h_eff, plan.landing, att);
+    const bool ok = implicit ? TryStep(h_eff, plan.landing, att)
+                             : TryExplicitStep(mode, plan.t_end, plan.landing, att);
     if (ok && att.err <= 1.0) {
-      const double grow = rejected ? 1.0 : 5.0;
-      const double factor =
-          att.err > 0 ? std::clamp(0.9 * std::cbrt(1.0 / att.err), 0.2, grow) : grow;
-      wave_.Append(plan.t_end, y_.data(), rate_.data(), {std::min(h_eff * factor, h_max), false});
+      SampleInfo next;
+      next.implicit = implicit;
+      next.err_prev = std::max(att.err, 1e-4);
+      double factor;
+      if (implicit) {
+        const double grow = rejected ? 1.0 : 5.0;
+        factor = att.err > 0 ? std::clamp(0.9 * std::cbrt(1.0 / att.err), 0.2, grow) : grow;
+        // Stiffness gone: h·ρ small enough for explicit steps.
+        if (auto_method && att.h_rho * factor < kExplicitComfort) next.stiff_votes = info.stiff_votes + 1;
+      } else {
+        factor = std::pow(att.err, -dp::kAlpha) * std::pow(info.err_prev, dp::kBeta) * dp::kSafety;
+        factor = std::clamp(factor, dp::kMinFactor, rejected ? 1.0 : dp::kMaxFactor);
+        if (auto_method && att.h_rho > kExplicitStability) {
+          next.stiff_votes = info.stiff_votes + 1;
+        } else if (auto_method && att.h_rho > 0.0) {
+          next.calm_votes = info.calm_votes + 1;
+          next.stiff_votes = next.calm_votes >= kCalmVotes ? 0 : info.stiff_votes;
+          if (next.calm_votes >= kCalmVotes) next.calm_votes = 0;
+        } else {  // no information (the state did not change)
+          next.stiff_votes = info.stiff_votes;
+          next.calm_votes = info.calm_votes;
+        }
+      }
+      if (next.stiff_votes >= kSwitchVotes) {
+        next.implicit = !implicit;
+        next.stiff_votes = 0;
+        ++counters_.method_switches;
+      }
+      next.h_next = std::min(h_eff * factor, h_max);
+      wave_.Append(plan.t_end, y_.data(), rate_.data(), next,
+                   att.explicit_step ? bubble_.data() : nullptr);
       ++counters_.steps;
       if (att.trbdf2) ++counters_.trbdf2_steps;
+      if (att.explicit_step) ++counters_.explicit_steps;
       jac_sample_ = -1;
       if (plan.landing) Restart();
       return true;
     }
     ++counters_.rejected_steps;
     rejected = true;
-    h = ok ? h_eff * std::max(0.2, 0.9 * std::cbrt(1.0 / att.err)) : h_eff * 0.25;
+    if (!ok) h = h_eff * 0.25;
+    else if (implicit) h = h_eff * std::max(0.2, 0.9 * std::cbrt(1.0 / att.err));
+    else h = h_eff * std::max(dp::kMinFactor, dp::kSafety * std::pow(att.err, -dp::kAlpha));
     if (!(h >= h_min)) {
       std::ostringstream msg;
       msg << "component " << index_ << " (" << Describe() << ") failed at t=" << t << ": "
-          << (ok ? "error estimate stays above tolerance" : "Newton iteration does not converge")
+          << (ok ? "error estimate stays above tolerance"
+                 : implicit ? "Newton iteration does not converge"
+                            : "the right-hand side is not finite")
           << " even with step " << h_eff;
       error_ = msg.str();
       return false;
@@ -486,7 +701,11 @@ void Component::Restart() {
   }
   EvalF(m, t, y_.data(), fy_.data(), Side::kRight, false);
   Rates(m, t, y_.data(), fy_.data(), y_.data(), 0.0, rate_.data(), Side::kRight);
-  wave_.Append(t, y_.data(), rate_.data(), {sim_.restart_step(), true});
+  SampleInfo info;
+  info.h_next = sim_.restart_step();
+  info.restart = true;
+  info.implicit = wave_.info(k).implicit;
+  wave_.Append(t, y_.data(), rate_.data(), info);
   ++counters_.restarts;
   jac_sample_ = -1;
 }

@@ -49,6 +49,7 @@
 
 namespace asgard::physics {
 struct EquationSystem;
+class JointSolver;
 }
 
 namespace asgard::solver {
@@ -61,7 +62,11 @@ struct SolverOptions {
   bool partition = true;      // false: one component for everything
   enum class Schedule : uint8_t { kEventDriven, kSequential };
   Schedule schedule = Schedule::kEventDriven;
-  enum class Method : uint8_t { kAuto, kTrapezoidal, kTrBdf2 };
+  // kAuto: the explicit Dormand–Prince pair where the component is not stiff,
+  // TR / TR-BDF2 where it is (decided from a spectral-radius estimate and
+  // re-decided during the run).  kExplicit: always Dormand–Prince (rows a
+  // trajectory or a hold prescribes still use the implicit path).
+  enum class Method : uint8_t { kAuto, kTrapezoidal, kTrBdf2, kExplicit };
   Method method = Method::kAuto;
   int dense_limit = 40;       // larger components use KLU
 };
@@ -70,6 +75,8 @@ struct Counters {
   long steps = 0;
   long rejected_steps = 0;
   long trbdf2_steps = 0;
+  long explicit_steps = 0;     // Dormand–Prince steps
+  long method_switches = 0;    // explicit ⇄ implicit decisions
   long rhs_evaluations = 0;
   long jacobian_evaluations = 0;
   long factorizations = 0;
@@ -117,7 +124,7 @@ class Component {
   // Events added while simulating (collisions).  A jump sets local variable
   // `local` to `value` at t (right limit).  The component owns its events;
   // its dynamic breakpoints are their times plus those of every component
-  // upstream (SetInheritedBreakpoints), since an upstream jump makes its
+  // upstream (SetDynamicBreakpoints), since an upstream jump makes its
   // rates jump.
   void AddJump(double t, int local, double value);
   // Holds local variable `local` at `value` (rate 0) from t on — a dynamic
@@ -154,6 +161,12 @@ class Component {
   void Rates(const Mode& m, double t, const double* y, const double* fy, const double* y0,
              double h, double* rate, Side side);
   bool TryStep(double h, bool landing, Attempt& out);
+  bool TryExplicitStep(const Mode& m, double h, bool landing, Attempt& out);
+  bool UseImplicit(const Mode& m, const SampleInfo& info) const;
+  // Spectral radius of ∂f/∂x (ODE rows) by power iteration on the Jacobian
+  // last evaluated.
+  double SpectralRadius(const Mode& m);
+  bool InitialImplicit(double t);
   void Restart();
   bool PendingRestart() const;
   double NextBreakpoint(double t) const;
@@ -161,11 +174,15 @@ class Component {
   double WeightedNorm(const double* v, const double* x, const double* y) const;
   std::string Describe() const;
 
+  // Jacobian by difference quotients of the whole right-hand side (the
+  // joints' forces have no symbolic form).
+  void EvalJacobianNumerically(Mode& m, double t, const double* y);
+
   Simulation& sim_;
   const physics::EquationSystem& sys_;
+  std::unique_ptr<physics::JointSolver> joints_;  // exact links among our bodies
   int index_;
   std::vector<int> vars_;
-  std::vector<int> local_of_;  // global var → local index, -1 if not ours (sized lazily)
   std::vector<int> inputs_;
   std::vector<double> static_breakpoints_;
   std::vector<double> dynamic_breakpoints_;
@@ -185,16 +202,19 @@ class Component {
   Waveform wave_;
   std::map<std::string, std::unique_ptr<Mode>> modes_;
   Mode* last_mode_ = nullptr;
-  std::string last_key_;
   double mode_lo_ = 1, mode_hi_ = 0;  // interval where last_mode_ is valid
   // Jacobian cache: valid for (sample index, mode).
   int jac_sample_ = -1;
   Mode* jac_mode_ = nullptr;
   double factored_a_ = -1;
+  double rho_ = 0.0;  // spectral radius estimate at the Jacobian's sample
   Counters counters_;
   std::string error_;
   // scratch
-  std::vector<double> x_, f_, y_, fy_, yg_, fg_, c_, r_, est_, rate_, w_;
+  std::vector<double> x_, y_, fy_, yg_, fg_, c_, r_, est_, rate_, rowsum_, pv_, pw_, gdot_;
+  std::vector<double> k_[7];   // Dormand–Prince stages
+  std::vector<double> bubble_;
+  SampleInfo next_info_;       // method state to store with the sample a step appends
 };
 
 }  // namespace asgard::solver

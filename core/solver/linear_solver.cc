@@ -28,7 +28,7 @@ class ScalarSolver final : public LinearSolver {
 class DenseSolver final : public LinearSolver {
  public:
   DenseSolver(int n, const std::vector<int>& rows, const std::vector<int>& cols)
-      : n_(n), rows_(rows), cols_(cols), m_(n, n), lu_(n) {}
+      : n_(n), rows_(rows), cols_(cols), m_(n, n), lu_(n), x_(n) {}
   bool Factor(const double* values) override {
     m_.setZero();
     for (size_t k = 0; k < rows_.size(); ++k) m_(rows_[k], cols_[k]) += values[k];
@@ -44,7 +44,8 @@ class DenseSolver final : public LinearSolver {
   }
   void Solve(double* rhs) const override {
     Eigen::Map<Eigen::VectorXd> r(rhs, n_);
-    r = lu_.solve(r);
+    x_.noalias() = lu_.solve(r);  // into preallocated storage
+    r = x_;
   }
 
  private:
@@ -52,6 +53,7 @@ class DenseSolver final : public LinearSolver {
   std::vector<int> rows_, cols_;
   Eigen::MatrixXd m_;
   Eigen::PartialPivLU<Eigen::MatrixXd> lu_;
+  mutable Eigen::VectorXd x_;
 };
 
 class KluSolver final : public LinearSolver {
@@ -88,6 +90,11 @@ class KluSolver final : public LinearSolver {
     if (!symbolic_) return false;
     std::fill(ax_.begin(), ax_.end(), 0.0);
     for (size_t k = 0; k < slot_.size(); ++k) ax_[slot_[k]] += values[k];
+    // A fresh factorization every time (not klu_refactor): the pivot order
+    // then depends only on this matrix, never on earlier factorizations, so
+    // a truncated component that resumes recomputes bit for bit.  klu_rcond
+    // is the O(n) ratio of U's extreme diagonal entries, not a condition
+    // estimate.
     if (numeric_) klu_free_numeric(&numeric_, &common_);
     numeric_ = klu_factor(ap_.data(), ai_.data(), ax_.data(), symbolic_, &common_);
     if (!numeric_ || common_.status != KLU_OK) return false;

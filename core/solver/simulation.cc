@@ -16,8 +16,39 @@ std::vector<std::vector<int>> ReadsOf(const physics::EquationSystem& sys) {
       auto more = sys.pool.Variables(o.expr);
       reads[i].insert(reads[i].end(), more.begin(), more.end());
     }
-    std::sort(reads[i].begin(), reads[i].end());
-    reads[i].erase(std::unique(reads[i].begin(), reads[i].end()), reads[i].end());
+  }
+  // An exact joint's force depends on the whole state of every body it
+  // connects, directly or through other joints: the acceleration rows of a
+  // jointed group read all of the group's variables.
+  const int nb = static_cast<int>(sys.bodies.size());
+  std::vector<int> root(nb);
+  for (int b = 0; b < nb; ++b) root[b] = b;
+  auto find = [&](int b) {
+    while (root[b] != b) b = root[b] = root[root[b]];
+    return b;
+  };
+  for (const auto& j : sys.joints)
+    if (j.body_b >= 0) root[find(j.body_a)] = find(j.body_b);
+  std::vector<std::vector<int>> groups(nb);
+  for (const auto& j : sys.joints) groups[find(j.body_a)].push_back(j.body_a);
+  for (const auto& j : sys.joints)
+    if (j.body_b >= 0) groups[find(j.body_b)].push_back(j.body_b);
+  for (auto& g : groups) {
+    std::sort(g.begin(), g.end());
+    g.erase(std::unique(g.begin(), g.end()), g.end());
+    std::vector<int> all;
+    for (int b : g)
+      for (int s = 0; s < physics::kBodySlots; ++s) all.push_back(sys.bodies[b].first_var + s);
+    for (int b : g)
+      for (int s : {physics::kDx, physics::kDy, physics::kDz, physics::kW1, physics::kW2,
+                    physics::kW3}) {
+        auto& r = reads[sys.bodies[b].first_var + s];
+        r.insert(r.end(), all.begin(), all.end());
+      }
+  }
+  for (auto& r : reads) {
+    std::sort(r.begin(), r.end());
+    r.erase(std::unique(r.begin(), r.end()), r.end());
   }
   return reads;
 }

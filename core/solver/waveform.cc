@@ -5,10 +5,13 @@
 
 namespace asgard::solver {
 
-void Waveform::Append(double t, const double* x, const double* f, SampleInfo info) {
+void Waveform::Append(double t, const double* x, const double* f, SampleInfo info,
+                      const double* bubble) {
   times_.push_back(t);
   x_.insert(x_.end(), x, x + n_);
   f_.insert(f_.end(), f, f + n_);
+  if (bubble) b_.insert(b_.end(), bubble, bubble + n_);
+  else b_.resize(b_.size() + n_, 0.0);
   info_.push_back(info);
 }
 
@@ -16,6 +19,7 @@ void Waveform::Resize(int k) {
   times_.resize(k);
   x_.resize(static_cast<size_t>(k) * n_);
   f_.resize(static_cast<size_t>(k) * n_);
+  b_.resize(static_cast<size_t>(k) * n_);
   info_.resize(k);
 }
 
@@ -42,21 +46,24 @@ int Waveform::Locate(double t, Side side) const {
 
 namespace {
 struct Hermite {
-  double h00, h10, h01, h11;  // value weights
-  double d00, d10, d01, d11;  // rate weights (already divided by h where needed)
+  double h00, h10, h01, h11, hb;  // value weights (hb: the bubble θ²(1−θ)²)
+  double d00, d10, d01, d11, db;  // rate weights (already divided by h where needed)
 };
 Hermite Weights(double t0, double t1, double t) {
   const double h = t1 - t0;
   const double s = (t - t0) / h;
   const double s2 = s * s, s3 = s2 * s;
+  const double u = s * (1 - s);
   return {2 * s3 - 3 * s2 + 1,
           (s3 - 2 * s2 + s) * h,
           -2 * s3 + 3 * s2,
           (s3 - s2) * h,
+          u * u,
           (6 * s2 - 6 * s) / h,
           3 * s2 - 4 * s + 1,
           (-6 * s2 + 6 * s) / h,
-          3 * s2 - 2 * s};
+          3 * s2 - 2 * s,
+          2 * u * (1 - 2 * s) / h};
 }
 }  // namespace
 
@@ -66,7 +73,8 @@ double Waveform::Value(int i, double t, Side side) const {
   if (t == times_[k]) return x(k)[i];
   if (t == times_[k + 1]) return x(k + 1)[i];
   const Hermite w = Weights(times_[k], times_[k + 1], t);
-  return w.h00 * x(k)[i] + w.h10 * f(k)[i] + w.h01 * x(k + 1)[i] + w.h11 * f(k + 1)[i];
+  return w.h00 * x(k)[i] + w.h10 * f(k)[i] + w.h01 * x(k + 1)[i] + w.h11 * f(k + 1)[i] +
+         w.hb * bubble(k + 1)[i];
 }
 
 double Waveform::Rate(int i, double t, Side side) const {
@@ -75,7 +83,8 @@ double Waveform::Rate(int i, double t, Side side) const {
   if (t == times_[k]) return f(k)[i];
   if (t == times_[k + 1]) return f(k + 1)[i];
   const Hermite w = Weights(times_[k], times_[k + 1], t);
-  return w.d00 * x(k)[i] + w.d10 * f(k)[i] + w.d01 * x(k + 1)[i] + w.d11 * f(k + 1)[i];
+  return w.d00 * x(k)[i] + w.d10 * f(k)[i] + w.d01 * x(k + 1)[i] + w.d11 * f(k + 1)[i] +
+         w.db * bubble(k + 1)[i];
 }
 
 }  // namespace asgard::solver

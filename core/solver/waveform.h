@@ -13,6 +13,13 @@
 //     │ ●━┛          ●━━━━●
 //     └──────────────────────▶ t
 //
+// A step of a higher-order method (the explicit Dormand–Prince pair) adds a
+// bubble term to the interval it ends: x(θ) = H(θ) + θ²(1−θ)² b, θ ∈ [0, 1],
+// with H the cubic Hermite interpolant.  That is the method's own continuous
+// extension (4th order), so playback, collision checks and the components
+// that read this one between samples see what the method computed, to its
+// order.  Intervals of trapezoidal and TR-BDF2 steps have b = 0.
+//
 // A sample also records what the integrator needs to continue from it
 // exactly as it did the first time (next step size, whether the step history
 // restarts there), so truncating to a sample and resuming reproduces the
@@ -27,9 +34,15 @@ namespace asgard::solver {
 
 enum class Side : uint8_t { kLeft, kRight };
 
+// What the integrator needs to continue from a sample exactly as it did the
+// first time.
 struct SampleInfo {
   double h_next = 0.0;   // step size proposed for the step starting here
   bool restart = false;  // no usable step history before this sample
+  bool implicit = false; // the component was integrating implicitly (stiff) here
+  uint8_t stiff_votes = 0;   // steps that argued for the other method
+  uint8_t calm_votes = 0;    // explicit: consecutive steps that did not look stiff
+  double err_prev = 1e-4;    // last accepted error estimate (PI step control)
 };
 
 class Waveform {
@@ -43,10 +56,15 @@ class Waveform {
   double t_end() const { return times_.back(); }
   const double* x(int k) const { return &x_[static_cast<size_t>(k) * n_]; }
   const double* f(int k) const { return &f_[static_cast<size_t>(k) * n_]; }
+  // Bubble coefficients of the interval ending at sample k (zero: none).
+  const double* bubble(int k) const { return &b_[static_cast<size_t>(k) * n_]; }
   const SampleInfo& info(int k) const { return info_[k]; }
   SampleInfo& info(int k) { return info_[k]; }
 
-  void Append(double t, const double* x, const double* f, SampleInfo info);
+  // `bubble` (may be null: zero) belongs to the interval from the previous
+  // sample to this one.
+  void Append(double t, const double* x, const double* f, SampleInfo info,
+              const double* bubble = nullptr);
   // Keeps samples 0..k.
   void Resize(int k_plus_one);
   // Index of the sample that a truncation to time t keeps last: the last
@@ -66,6 +84,7 @@ class Waveform {
   std::vector<double> times_;
   std::vector<double> x_;
   std::vector<double> f_;
+  std::vector<double> b_;
   std::vector<SampleInfo> info_;
 };
 

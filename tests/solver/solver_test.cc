@@ -274,12 +274,19 @@ TEST(StiffLink, NoRingingAndStepCountRoughlyFlatFromK1e2To1e8) {
   for (long s : steps) EXPECT_LT(s, 3 * steps.front()) << "steps " << s << " vs " << steps.front();
 }
 
-TEST(StiffLink, TrBdf2TakesOverFromTheTrapezoidalRuleOnAStiffStep) {
+TEST(StiffLink, TrBdf2TakesOverOnceTheTransientHasDecayed) {
   // A stiff link over a long interval: once the transient has decayed the
-  // steps are far longer than 1/ω, and the step must be L-stable.
+  // steps are far longer than 1/ω, and they must be L-stable.  (While the
+  // transient lasts the step is limited by accuracy, not stability, and the
+  // component may take explicit steps there: the method is chosen per step
+  // from the spectral radius, see component.h.)
   const SceneRun run = SimulateOk(testing::DampedLink(1e8, 1.0, 1.0, 10.0));
-  const auto c = run.simulation->totals();
-  EXPECT_GT(c.trbdf2_steps, c.steps / 2);
+  const int c = run.simulation->component_of(Var(run, "d", physics::kX));
+  const auto& comp = run.simulation->component(c);
+  int late = 0;
+  for (int k = 1; k < comp.waveform().size(); ++k) late += comp.waveform().time(k) > 0.05;
+  EXPECT_LE(late, 40);
+  EXPECT_GE(comp.counters().trbdf2_steps, late);
 }
 
 void ExpectSameWaveforms(const solver::Simulation& a, const solver::Simulation& b) {

@@ -1,0 +1,121 @@
+// Exact joints: the forces that keep linked points together, solved from the
+// constraints at every evaluation of the rates.
+//
+// A joint j holds point s_a of body a on point s_b of body b (or on a point
+// p(t) of space).  With R the rotation, ω the angular velocity (body axes)
+// and r = R s the anchor's arm in world axes:
+//
+//   C   = x_a + R_a s_a − (x_b + R_b s_b)                      position error
+//   Ċ   = v_a + R_a (ω_a × s_a) − (…)_b                         velocity error
+//   C̈   = a_a + R_a (ω̇_a × s_a + ω_a × (ω_a × s_a)) − (…)_b
+//
+// A force λ_j at the joint (+λ on a, −λ on b) changes the accelerations by
+// a = λ/m and ω̇ = I⁻¹ (s × Rᵀλ), so C̈ = C̈_free + Σ_k K_jk λ_k with
+//
+//   K_jk = Σ over bodies B that j and k share  σ_jB σ_kB W_B(s_jB, s_kB),
+//   W(s, s') = I₃/m − R [s]× I⁻¹ [s']× Rᵀ        (symmetric positive definite)
+//
+// where σ = +1 on a's side, −1 on b's.  The forces make the error decay as a
+// critically damped oscillator (Baumgarte stabilization, so the drift that
+// integration leaves in C is pulled back smoothly, and a step still depends
+// only on its starting sample):
+//
+//   C̈ + 2Ω Ċ + Ω² C = 0   ⇒   (K + εD) λ = −(C̈_free + 2Ω Ċ + Ω² C)
+//
+// ε D (a tiny multiple of K's diagonal) regularizes redundant and closed-loop
+// constraints, which would otherwise make K singular.
+//
+// K is block sparse (3×3 blocks, one block row per joint, nonzero where two
+// joints share a body).  It is factored as L D Lᵀ in blocks, in an
+// elimination order chosen once (minimum degree on the joint graph): a chain
+// or a tree is eliminated from its leaves with no fill, so a solve costs time
+// linear in the number of joints.  A closed loop fills in only along the loop.
+//
+// Rejected: (1) stiff penalty springs (the seed's links) — their stiff
+// directions turn with the bodies, so implicit steps need fresh Jacobians
+// every step and explicit ones tiny steps; (2) reduced (joint-angle)
+// coordinates — exact and cheap for trees, but they would replace the 13
+// variables per body that the whole system (trajectories, collisions,
+// editing) is built on; (3) projection after each step — exact, but it
+// makes a sample depend on a correction outside the integration.
+#pragma once
+
+#include <Eigen/Dense>
+#include <vector>
+
+#include "core/expr/expr.h"
+#include "core/physics/equations.h"
+
+namespace asgard::physics {
+
+class JointSolver {
+ public:
+  // `joints`: indices into sys.joints.  `local_first[b]` (per body of sys)
+  // is the index of body b's first state variable in the rate array that
+  // Apply corrects, or -1 when b's state is not there.
+  JointSolver(const EquationSystem& sys, std::vector<int> joints,
+              const std::vector<int>& local_first);
+
+  // Adds the joint forces' effect to `rates` (accelerations and angular
+  // accelerations of the bodies involved).  `values` holds every state
+  // variable (global indices) at time t; `rates` the free rates.  Rows set in
+  // `prescribed` (local) are values, not rates, and are left alone; a body
+  // whose velocity is prescribed moves as prescribed (infinite mass).
+  void Apply(double t, const double* values, double* rates, const char* prescribed,
+             const expr::ExternFn* externs);
+
+  int joint_count() const { return static_cast<int>(joints_.size()); }
+
+ private:
+  struct BodyData {
+    int body;            // index in sys.bodies
+    int local;           // first local state index
+    double inv_mass;
+    Eigen::Matrix3d inv_inertia;  // body axes
+    // per evaluation
+    Eigen::Matrix3d R;
+    Eigen::Vector3d w;            // angular velocity, body axes
+    bool kinematic;
+  };
+  struct End {
+    int body = -1;                // index into bodies_, -1: point of space
+    Eigen::Vector3d s = Eigen::Vector3d::Zero();
+  };
+  struct JointData {
+    End a, b;
+    int point = -1;               // first output of the point tape (b.body < 0)
+  };
+  // One 3×3 block of the factor: row block i, column (pivot) block p.
+  struct Update {
+    int target;  // block slot updated: A_ik −= L_ip A_pk
+    int lhs;     // slot of L_ip
+    int rhs;     // slot of A_pk (stored as A_kp, transposed on use)
+  };
+  struct Pivot {
+    int joint;
+    int diag;                      // slot of A_pp
+    std::vector<int> rows;         // later joints coupled to p (after fill)
+    std::vector<int> slots;        // slot of A_ip for each row
+    std::vector<Update> updates;
+  };
+
+  void Symbolic();
+  int Slot(int i, int j);
+  Eigen::Matrix3d Coupling(int i, int k) const;
+
+  const EquationSystem& sys_;
+  std::vector<BodyData> bodies_;
+  std::vector<JointData> joints_;
+  expr::Tape point_tape_;
+  std::vector<double> point_values_;
+  // block structure
+  std::vector<std::vector<std::pair<int, int>>> shared_;  // per joint: (other joint, body)
+  std::vector<Pivot> pivots_;                             // in elimination order
+  std::vector<std::pair<int, int>> slot_keys_;            // (row, col) of each slot
+  std::vector<Eigen::Matrix3d> blocks_;
+  std::vector<Eigen::Matrix3d> dinv_;                     // per pivot
+  std::vector<Eigen::Vector3d> rhs_;                      // per joint
+  std::vector<Eigen::Vector3d> arm_a_, arm_b_;            // per joint, world
+};
+
+}  // namespace asgard::physics
