@@ -89,8 +89,9 @@ std::string PendulumText(const std::string& name, const double* pivot, double le
   t << "body " << name << " -shape ball -mass " << Real(mass) << " -init_pos "
     << Vec(pivot[0] + len * s, pivot[1] - len * c, pivot[2]) << "\n"
     << "link -body1 " << name << " -offset1 " << Vec(-len * s, len * c, 0) << " -x "
-    << Real(pivot[0]) << " -y " << Real(pivot[1]) << " -z " << Real(pivot[2]) << " -tightness "
-    << Real(k) << "\n"
+    << Real(pivot[0]) << " -y " << Real(pivot[1]) << " -z " << Real(pivot[2]);
+  if (k > 0) t << " -tightness " << Real(k);  // else an exact joint
+  t << "\n"
     << "force -body " << name << " -x 0 -y " << Real(-g) << " -z 0 -gravitational 1\n";
   return t.str();
 }
@@ -105,7 +106,7 @@ WpScene SimplePendulumScene() {
   WpScene s;
   s.name = "pendulum";
   const double pivot[3] = {0, 0, 0};
-  s.text = BallShape() + PendulumText("m", pivot, 1.0, 1.0, 9.81, 1e6) + "simulator -finish 10\n";
+  s.text = BallShape() + PendulumText("m", pivot, 1.0, 1.0, 9.81, 0) + "simulator -finish 10\n";
   s.size = 2.0;
   s.radii = {0.5};
   RigidChain c;
@@ -122,17 +123,16 @@ WpScene SimplePendulumScene() {
 WpScene DoublePendulumScene() {
   WpScene s;
   s.name = "double_pendulum";
-  const double th1 = 1.0, th2 = 0.3, k = 1e6;
+  const double th1 = 1.0, th2 = 0.3;
   const double u1[2] = {std::sin(th1), -std::cos(th1)}, u2[2] = {std::sin(th2), -std::cos(th2)};
   std::ostringstream t;
   t << BallShape() << "body a -shape ball -mass 1 -artbody dp -ct 0 -init_pos "
     << Vec(u1[0], u1[1], 0) << "\n"
     << "body b -shape ball -mass 1 -artbody dp -ct 0 -init_pos "
     << Vec(2 * u1[0] + u2[0], 2 * u1[1] + u2[1], 0) << "\n"
-    << "link -body1 a -offset1 " << Vec(-u1[0], -u1[1], 0) << " -x 0 -y 0 -z 0 -tightness "
-    << Real(k) << "\n"
+    << "link -body1 a -offset1 " << Vec(-u1[0], -u1[1], 0) << " -x 0 -y 0 -z 0\n"
     << "link -body1 b -offset1 " << Vec(-u2[0], -u2[1], 0) << " -body2 a -offset2 "
-    << Vec(u1[0], u1[1], 0) << " -tightness " << Real(k) << "\n"
+    << Vec(u1[0], u1[1], 0) << "\n"
     << "force -body a -x 0 -y -9.81 -z 0 -gravitational 1\n"
     << "force -body b -x 0 -y -9.81 -z 0 -gravitational 1\n"
     << "simulator -finish 10\n";
@@ -171,10 +171,10 @@ WpScene ChainScene(int n) {
     t << "body r" << i << " -shape rod -mass 1 -artbody chain -ct 0 -init_pos "
       << Vec(i + 0.5, 0, 0) << "\n";
     if (i == 0) {
-      t << "link -body1 r0 -offset1 {-0.5 0 0} -x 0 -y 0 -z 0 -tightness 1e6\n";
+      t << "link -body1 r0 -offset1 {-0.5 0 0} -x 0 -y 0 -z 0\n";
     } else {
       t << "link -body1 r" << i << " -offset1 {-0.5 0 0} -body2 r" << i - 1
-        << " -offset2 {0.5 0 0} -tightness 1e6\n";
+        << " -offset2 {0.5 0 0}\n";
     }
     t << "force -body r" << i << " -x 0 -y -9.81 -z 0 -gravitational 1\n";
   }

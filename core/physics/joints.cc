@@ -142,8 +142,8 @@ Eigen::Matrix3d JointSolver::Coupling(int i, int k) const {
   return K;
 }
 
-void JointSolver::Apply(double t, const double* values, double* rates, const char* prescribed,
-                        const expr::ExternFn* externs) {
+void JointSolver::Prepare(double t, const double* values, const char* prescribed,
+                          const expr::ExternFn* externs) {
   for (BodyData& b : bodies_) {
     const int v0 = sys_.bodies[b.body].first_var;
     Eigen::Quaterniond q(values[v0 + kQw], values[v0 + kQx], values[v0 + kQy], values[v0 + kQz]);
@@ -154,6 +154,32 @@ void JointSolver::Apply(double t, const double* values, double* rates, const cha
       if (prescribed[b.local + slot]) b.kinematic = true;
   }
   if (!point_values_.empty()) point_tape_.Evaluate(t, values, point_values_.data(), externs);
+}
+
+void JointSolver::ProjectVelocities(double t, const double* values, double* state,
+                                    const char* prescribed, const expr::ExternFn* externs) {
+  Prepare(t, values, prescribed, externs);
+  for (size_t j = 0; j < joints_.size(); ++j) {
+    auto velocity = [&](const End& e) -> Eigen::Vector3d {
+      const BodyData& b = bodies_[e.body];
+      const double* s = state + b.local;
+      return Eigen::Vector3d(s[kDx], s[kDy], s[kDz]) +
+             b.R * Eigen::Vector3d(s[kW1], s[kW2], s[kW3]).cross(e.s);
+    };
+    const JointData& d = joints_[j];
+    Eigen::Vector3d vb = Eigen::Vector3d::Zero();
+    if (d.b.body >= 0) vb = velocity(d.b);
+    else vb = Eigen::Vector3d(point_values_[d.point + 3], point_values_[d.point + 4],
+                              point_values_[d.point + 5]);
+    rhs_[j] = -(velocity(d.a) - vb);
+  }
+  Solve();
+  Distribute(state, prescribed);
+}
+
+void JointSolver::Apply(double t, const double* values, double* rates, const char* prescribed,
+                        const expr::ExternFn* externs) {
+  Prepare(t, values, prescribed, externs);
 
   // Position, velocity and free acceleration of one end of a joint.
   auto end_state = [&](const End& e, Eigen::Vector3d& arm, Eigen::Vector3d& p, Eigen::Vector3d& v,
@@ -189,6 +215,11 @@ void JointSolver::Apply(double t, const double* values, double* rates, const cha
     rhs_[j] = -(Cdd + 2.0 * kStabilization * Cd + kStabilization * kStabilization * C);
   }
 
+  Solve();
+  Distribute(rates, prescribed);
+}
+
+void JointSolver::Solve() {
   // Assemble K + εD in the factor's slots, then factor L D Lᵀ and solve.
   for (size_t s = 0; s < slot_keys_.size(); ++s) {
     const auto [i, k] = slot_keys_[s];
@@ -229,7 +260,10 @@ void JointSolver::Apply(double t, const double* values, double* rates, const cha
   for (auto it = pivots_.rbegin(); it != pivots_.rend(); ++it)
     for (size_t r = 0; r < it->rows.size(); ++r)
       rhs_[it->joint] -= L(*it, r).transpose() * rhs_[it->rows[r]];
+}
 
+void JointSolver::Distribute(double* out, const char* prescribed) const {
+  const int n = static_cast<int>(joints_.size());
   // Apply λ: +λ on a's anchor, −λ on b's.
   auto push = [&](const End& e, const Eigen::Vector3d& force) {
     if (e.body < 0) return;
@@ -238,8 +272,8 @@ void JointSolver::Apply(double t, const double* values, double* rates, const cha
     const Eigen::Vector3d dv = b.inv_mass * force;
     const Eigen::Vector3d dw = b.inv_inertia * e.s.cross(b.R.transpose() * force);
     for (int a = 0; a < 3; ++a) {
-      if (!prescribed[b.local + kDx + a]) rates[b.local + kDx + a] += dv[a];
-      if (!prescribed[b.local + kW1 + a]) rates[b.local + kW1 + a] += dw[a];
+      if (!prescribed[b.local + kDx + a]) out[b.local + kDx + a] += dv[a];
+      if (!prescribed[b.local + kW1 + a]) out[b.local + kW1 + a] += dw[a];
     }
   };
   for (int j = 0; j < n; ++j) {

@@ -64,6 +64,14 @@ class JointSolver {
   void Apply(double t, const double* values, double* rates, const char* prescribed,
              const expr::ExternFn* externs);
 
+  // An impulsive joint response: after velocities jumped (a collision),
+  // impulses at the joints make every joint's relative velocity zero again
+  // (K Λ = −Ċ), so an impact on one body of an articulated group moves the
+  // group as joined bodies do.  `state` is the component-local state (the
+  // velocities there are changed); `values` the global state with it loaded.
+  void ProjectVelocities(double t, const double* values, double* state, const char* prescribed,
+                         const expr::ExternFn* externs);
+
   int joint_count() const { return static_cast<int>(joints_.size()); }
 
  private:
@@ -100,6 +108,12 @@ class JointSolver {
   };
 
   void Symbolic();
+  void Prepare(double t, const double* values, const char* prescribed,
+               const expr::ExternFn* externs);
+  // Factors K + εD at the prepared state and overwrites rhs_ with the solution.
+  void Solve();
+  // Adds the effect of forces (or impulses) rhs_ to `out` (rates or velocities).
+  void Distribute(double* out, const char* prescribed) const;
   int Slot(int i, int j);
   Eigen::Matrix3d Coupling(int i, int k) const;
 

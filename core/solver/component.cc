@@ -691,9 +691,18 @@ void Component::Restart() {
   const double t = wave_.time(k);
   const size_t n = vars_.size();
   std::copy(wave_.x(k), wave_.x(k) + n, y_.begin());
+  bool jumped = false;
   for (const Jump& j : jumps_)
-    if (j.t == t) y_[j.local] = j.value;
+    if (j.t == t) {
+      y_[j.local] = j.value;
+      jumped = true;
+    }
   Mode& m = ModeAt(t);
+  if (jumped && joints_) {
+    // An impulse on a jointed body moves its whole group (joint impulses).
+    Load(t, y_.data(), Side::kRight);
+    joints_->ProjectVelocities(t, sim_.values(), y_.data(), m.prescribed.data(), &sim_.externs());
+  }
   for (int pass = 0; pass < 2; ++pass) {
     EvalF(m, t, y_.data(), fy_.data(), Side::kRight, false);
     for (size_t j = 0; j < n; ++j)

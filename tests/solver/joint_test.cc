@@ -192,6 +192,58 @@ TEST(ExactJoint, ClosedLoopIsRegularizedNotSingular) {
   EXPECT_LT(WorstJointGap(run, 2.0), 1e-3);
 }
 
+TEST(ExactJoint, AJointHitByABallMovesItsGroupAndKeepsMomentum) {
+  // Two free rods joined end to end, a ball thrown at the second one: no
+  // external force, so the total momentum is kept through the impact, and
+  // the impulse reaches the first rod through the joint at once.
+  const std::string text =
+      std::string(testing::kBallShape) +
+      "shape_set rod -desc {-sub {-pos {0 0 0} -vertices {{-0.5 -0.1 -0.1} {0.5 -0.1 -0.1} "
+      "{-0.5 0.1 -0.1} {0.5 0.1 -0.1} {-0.5 -0.1 0.1} {0.5 -0.1 0.1} {-0.5 0.1 0.1} "
+      "{0.5 0.1 0.1}}}}\n"
+      "body r0 -shape rod -mass 1 -artbody c -ct 0 -init_pos {0.5 0 0}\n"
+      "body r1 -shape rod -mass 1 -artbody c -ct 0 -init_pos {1.5 0 0}\n"
+      "link -body1 r0 -offset1 {0.5 0 0} -body2 r1 -offset2 {-0.5 0 0}\n"
+      "body ball -shape ball -mass 1 -ct 1 -init_pos {1.7 2 0} -init_dpos {0 -3 0}\n"
+      "simulator -finish 1.5\n";
+  const app::Run run = Simulate(text, 1e-7, 1e-9);
+  ASSERT_NE(run.collisions, nullptr);
+  ASSERT_GE(run.collisions->impacts().size(), 1u);
+  const double t_hit = run.collisions->impacts().front().t;
+  auto momentum = [&](double t) {
+    Eigen::Vector3d p = Eigen::Vector3d::Zero();
+    for (const char* name : {"r0", "r1", "ball"}) {
+      const int v = run.equations->bodies[run.equations->FindBody(name)].first_var;
+      p += Eigen::Vector3d(run.simulation->Value(v + physics::kDx, t),
+                           run.simulation->Value(v + physics::kDy, t),
+                           run.simulation->Value(v + physics::kDz, t));
+    }
+    return p;
+  };
+  EXPECT_LT((momentum(1.5) - Eigen::Vector3d(0, -3, 0)).norm(), 1e-6);
+  // Right after the impact the first rod moves too (the joint carried the
+  // impulse), and the joined points move together.
+  const auto& sys = *run.equations;
+  auto point_velocity = [&](const char* name, const Eigen::Vector3d& s, solver::Side side) {
+    const int v = sys.bodies[sys.FindBody(name)].first_var;
+    auto val = [&](int slot) { return run.simulation->Value(v + slot, t_hit, side); };
+    const Eigen::Quaterniond q(val(physics::kQw), val(physics::kQx), val(physics::kQy),
+                               val(physics::kQz));
+    const Eigen::Vector3d w(val(physics::kW1), val(physics::kW2), val(physics::kW3));
+    return Eigen::Vector3d(Eigen::Vector3d(val(physics::kDx), val(physics::kDy), val(physics::kDz)) +
+                           q.normalized() * w.cross(s));
+  };
+  const Eigen::Vector3d zero = Eigen::Vector3d::Zero();
+  EXPECT_LT(point_velocity("r0", zero, solver::Side::kLeft).norm(), 1e-9);
+  EXPECT_GT(point_velocity("r0", zero, solver::Side::kRight).norm(), 0.01);
+  const physics::Joint& j = sys.joints.front();
+  EXPECT_LT((point_velocity("r0", j.s_a, solver::Side::kRight) -
+             point_velocity("r1", j.s_b, solver::Side::kRight))
+                .norm(),
+            1e-9);
+  EXPECT_LT(WorstJointGap(run, 1.5), 1e-4);
+}
+
 TEST(ExactJoint, LinkWithTightnessStaysASpring) {
   const std::string spring = testing::Pendulum(2.0, 0.5, 9.81, 1e4, 1.0);
   const app::Run run = Simulate(spring, 1e-6, 1e-6);
