@@ -1,8 +1,9 @@
 // Scene sampling for rendering and export (seed 4.1.9).
 //
-// A SceneSampler wraps a finished simulation run and answers what every
-// output needs: each body's geometry in body coordinates (origin at the centre
-// of mass, shape axes), its pose at any time t (app::SampleBody: the Hermite
+// A SceneSampler reads a scene, its equations and their finished simulation
+// and answers what every output needs: each body's geometry in body
+// coordinates (origin at the centre of mass, shape axes), its pose at any time
+// t (pipeline::SampleBody: the Hermite
 // interpolant of the integrator's own samples, so playback matches what was
 // integrated), the frame times, the default view that frames the whole
 // animation, the lights, and overlay geometry (link springs, force vectors,
@@ -16,7 +17,7 @@
 #include <string>
 #include <vector>
 
-#include "core/app/pipeline.h"
+#include "core/pipeline/pipeline.h"
 #include "core/render/color.h"
 #include "core/render/view.h"
 
@@ -63,8 +64,10 @@ struct Bound {
 
 class SceneSampler {
  public:
-  // `run` must be ok (simulated) and outlive the sampler.
-  explicit SceneSampler(const app::Run& run);
+  // The simulation must have run to its end; all three must outlive the
+  // sampler.
+  SceneSampler(const scene::Scene& scene, const physics::EquationSystem& equations,
+               const solver::Simulation& simulation);
   ~SceneSampler();
   SceneSampler(const SceneSampler&) = delete;
   SceneSampler& operator=(const SceneSampler&) = delete;
@@ -78,7 +81,7 @@ class SceneSampler {
 
   std::vector<Pose> Poses(double t) const;
   // The scene's frame times (simulator -frames per second, t0..t1 inclusive,
-  // the last frame at t1), as app::SampleFrames.
+  // the last frame at t1), as pipeline::SampleFrames.
   std::vector<double> FrameTimes() const;
   // `count` frames evenly spaced over [start, end] (count 1: start).
   static std::vector<double> FrameTimes(double start, double end, int count);
@@ -105,8 +108,10 @@ class SceneSampler {
 
  private:
   struct Evaluator;
-  const app::Run& run_;
-  double frame_rate_ = 30.0;
+  const scene::Scene& scene_;
+  const physics::EquationSystem& equations_;
+  const solver::Simulation& simulation_;
+  double frame_rate_;
   std::vector<BodyShape> bodies_;
   std::vector<std::string> unknown_colors_;
   std::unique_ptr<Evaluator> eval_;
