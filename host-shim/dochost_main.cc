@@ -345,9 +345,16 @@ int RunVerb(Host& h) {
     }
     return true;
   };
-  if (o.verb == "recompute" || o.verb == "restart") {
-    const bool ok = o.verb == "restart" ? h.doc->Restart(item) : h.doc->SetText(item, item.text);
-    if (!ok)
+  if (o.verb == "restart") {
+    // Only the slave process: the document is written only to -o OUT.
+    if (!h.doc->Restart(item))
+      return h.Fail(o.in + ": animation " + std::to_string(item.index) + ": " + item.message);
+    if (!o.quiet)
+      std::cout << "animation " << item.index << ": restarted: " << item.message << "\n";
+    return o.out.empty() ? 0 : h.Write(o.out);
+  }
+  if (o.verb == "recompute") {
+    if (!h.doc->SetText(item, item.text))
       return h.Fail(o.in + ": animation " + std::to_string(item.index) + ": " + item.message);
     bool live = false;
     const Picture p = h.doc->Frame(item, ASGARD_DEVICE_PAGE, item.width * 2, item.height * 2,
