@@ -5,8 +5,9 @@
 //   asgard export FILE --format rayshade|povray|gltf [-t T] [view options] -o OUT
 //
 // Design: both commands simulate the whole scene first (the default view
-// frames every body over the whole animation), then sample poses at the
-// requested times through render::SceneSampler.  The output file's extension
+// frames the animation: render::SceneSampler::SceneBound), then sample poses
+// at the requested times through render::SceneSampler; a view element's
+// -follow or -trajectory (or --follow) moves the view centre per frame.  The output file's extension
 // chooses the writer.  Conventions follow `asgard simulate` (main.cc): usage
 // problems print the message and the help and exit 2; scene errors, solver
 // failures and write errors exit 1; a progress bar is shown on stderr for

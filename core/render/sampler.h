@@ -3,11 +3,10 @@
 // A SceneSampler reads a scene, its equations and their finished simulation
 // and answers what every output needs: each body's geometry in body
 // coordinates (origin at the centre of mass, shape axes), its pose at any time
-// t (pipeline::SampleBody: the Hermite
-// interpolant of the integrator's own samples, so playback matches what was
-// integrated), the frame times, the default view that frames the whole
-// animation, the lights, and overlay geometry (link springs, force vectors,
-// body paths).
+// t (pipeline::SampleBody: the Hermite interpolant of the integrator's own
+// samples, so playback matches what was integrated), the frame times, the
+// default framing view (SceneBound), the lights, and overlay geometry (link
+// springs, force vectors, body paths).
 #pragma once
 
 #include <Eigen/Dense>
@@ -88,7 +87,7 @@ class SceneSampler {
 
   // Sphere (centred on the smallest box) holding every body's bounding sphere
   // at the start, and along its path until it first strays beyond twice that
-  // radius (all of the path when the scene has one body).
+  // radius (all of the paths when fewer than two bodies have geometry).
   Bound SceneBound() const;
   // The framing view (DefaultTilt, centre and radius of SceneBound), with the
   // options of the scene's last `view` element (or the one named `name`)
