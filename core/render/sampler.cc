@@ -150,13 +150,8 @@ SceneSampler::SceneSampler(const scene::Scene& scene, const physics::EquationSys
       p.center = bp.center;
       p.radius = bp.radius;
       if (!p.sphere) {
-        p.vertices = bp.hull.vertices;
-        p.triangles = bp.hull.triangles;
-        for (const auto& f : bp.hull.faces) {
-          p.faces.push_back(f.vertices);
-          p.normals.push_back(f.normal);
-        }
-        for (const auto& v : p.vertices) lo = lo.cwiseMin(v), hi = hi.cwiseMax(v);
+        p.hull = bp.hull;
+        for (const auto& v : p.hull.vertices) lo = lo.cwiseMin(v), hi = hi.cwiseMax(v);
       } else {
         lo = lo.cwiseMin((p.center.array() - p.radius).matrix());
         hi = hi.cwiseMax((p.center.array() + p.radius).matrix());
@@ -175,7 +170,7 @@ SceneSampler::SceneSampler(const scene::Scene& scene, const physics::EquationSys
         if (p.sphere)
           shape.bound_radius =
               std::max(shape.bound_radius, (p.center - shape.bound_center).norm() + p.radius);
-        for (const auto& v : p.vertices)
+        for (const auto& v : p.hull.vertices)
           shape.bound_radius = std::max(shape.bound_radius, (v - shape.bound_center).norm());
       }
     }

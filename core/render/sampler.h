@@ -16,21 +16,20 @@
 #include <string>
 #include <vector>
 
+#include "core/geometry/geometry.h"
 #include "core/pipeline/pipeline.h"
 #include "core/render/color.h"
 #include "core/render/view.h"
 
 namespace asgard::render {
 
-// One convex piece in body coordinates.
+// One convex piece in body coordinates: a sphere, or the hull physics
+// computed (vertices, CCW triangles, merged faces with outward normals).
 struct Piece {
   bool sphere = false;
   Eigen::Vector3d center = Eigen::Vector3d::Zero();  // sphere
   double radius = 0.0;                               // sphere
-  std::vector<Eigen::Vector3d> vertices;             // hull
-  std::vector<std::vector<int>> faces;               // hull polygons, CCW from outside
-  std::vector<Eigen::Vector3d> normals;              // per face, outward
-  std::vector<std::array<int, 3>> triangles;         // hull triangulation
+  geometry::ConvexHull hull;                         // when not a sphere
   Rgb color;
 };
 

@@ -198,7 +198,8 @@ body a -shape s
   const Mesh box = PieceMesh(pieces[0]);
   EXPECT_EQ(box.indices.size(), 36u);  // 6 faces × 2 triangles
   Eigen::Vector3f mid = Eigen::Vector3f::Zero();
-  for (const auto& v : pieces[0].vertices) mid += v.cast<float>() / pieces[0].vertices.size();
+  for (const auto& v : pieces[0].hull.vertices)
+    mid += v.cast<float>() / pieces[0].hull.vertices.size();
   ExpectOutward(box, mid);
   const Mesh ball = PieceMesh(pieces[1], 16);
   ExpectOutward(ball, pieces[1].center.cast<float>());
