@@ -1,10 +1,12 @@
 // The simulate pipeline (see pipeline.h).
 #include "core/pipeline/pipeline.h"
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 
 #include "core/lang/lang.h"
+#include "core/protocol/protocol.h"
 
 namespace asgard::pipeline {
 

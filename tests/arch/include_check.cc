@@ -40,6 +40,20 @@ std::string ModuleOf(const std::string& path, const Layers& layers) {
   return best;
 }
 
+// What each module may use: itself and the closure of its dependencies.
+std::map<std::string, std::set<std::string>> Allowed(const Layers& layers) {
+  std::map<std::string, std::set<std::string>> allowed;
+  std::function<void(const std::string&, std::set<std::string>&)> close =
+      [&](const std::string& m, std::set<std::string>& out) {
+        if (!out.insert(m).second) return;
+        const auto it = layers.find(m);
+        if (it != layers.end())
+          for (const auto& d : it->second) close(d, out);
+      };
+  for (const auto& [m, deps] : layers) close(m, allowed[m]);
+  return allowed;
+}
+
 std::string Read(const fs::path& p) {
   std::ifstream in(p, std::ios::binary);
   std::ostringstream s;
@@ -102,22 +116,14 @@ Layers ParseLayers(const std::string& markdown, std::string* error) {
 
 std::string Violation::Describe() const {
   const std::string where = file + ":" + std::to_string(line) + ": ";
+  if (!message.empty()) return where + message;
   if (from.empty()) return where + "the file is in no module of the table";
   if (to.empty()) return where + "#include \"" + include + "\" resolves to no module";
   return where + "#include \"" + include + "\" points up: " + from + " may not include " + to;
 }
 
 std::vector<Violation> FindUpwardIncludes(const fs::path& root, const Layers& layers) {
-  // What each module may include: itself and the closure of its dependencies.
-  std::map<std::string, std::set<std::string>> allowed;
-  std::function<void(const std::string&, std::set<std::string>&)> close =
-      [&](const std::string& m, std::set<std::string>& out) {
-        if (!out.insert(m).second) return;
-        const auto it = layers.find(m);
-        if (it != layers.end())
-          for (const auto& d : it->second) close(d, out);
-      };
-  for (const auto& [m, deps] : layers) close(m, allowed[m]);
+  auto allowed = Allowed(layers);
 
   std::vector<Violation> out;
   static const std::regex kInclude(R"(^\s*#\s*include\s*"([^"]+)\")");
@@ -134,7 +140,7 @@ std::vector<Violation> FindUpwardIncludes(const fs::path& root, const Layers& la
       const std::string rel = fs::relative(path, root).generic_string();
       const std::string from = ModuleOf(rel, layers);
       if (from.empty()) {
-        out.push_back({rel, 0, "", "", ""});
+        out.push_back({rel, 0, "", "", "", ""});
         continue;
       }
       std::istringstream text(Read(path));
@@ -152,7 +158,56 @@ std::vector<Violation> FindUpwardIncludes(const fs::path& root, const Layers& la
           }
         }
         const std::string to = target.empty() ? "" : ModuleOf(target, layers);
-        if (to.empty() || !allowed[from].count(to)) out.push_back({rel, n, inc, from, to});
+        if (to.empty() || !allowed[from].count(to)) out.push_back({rel, n, inc, from, to, ""});
+      }
+    }
+  }
+  return out;
+}
+
+std::vector<Violation> FindUpwardLinks(const fs::path& root, const Layers& layers) {
+  const auto allowed = Allowed(layers);
+  // Which module folder defines each target.
+  static const std::regex kDefine(R"((?:add_library|add_executable)\(\s*([A-Za-z0-9_.-]+))");
+  static const std::regex kLink(R"(target_link_libraries\(([^)]*)\))");
+  static const std::regex kWord(R"([A-Za-z0-9_.:${}<>-]+)");
+  std::map<std::string, std::string> owner;
+  std::map<std::string, std::string> lists;  // module → its CMakeLists.txt text
+  for (const auto& [module, deps] : layers) {
+    const fs::path file = root / module / "CMakeLists.txt";
+    if (!fs::exists(file)) continue;
+    lists[module] = Read(file);
+    const std::string& text = lists[module];
+    for (auto it = std::sregex_iterator(text.begin(), text.end(), kDefine);
+         it != std::sregex_iterator(); ++it)
+      owner[(*it)[1]] = module;
+  }
+  std::vector<Violation> out;
+  for (const auto& [module, text] : lists) {
+    const std::string file = module + "/CMakeLists.txt";
+    for (auto it = std::sregex_iterator(text.begin(), text.end(), kLink);
+         it != std::sregex_iterator(); ++it) {
+      const std::string args = (*it)[1];
+      const int line =
+          1 + static_cast<int>(std::count(text.begin(), text.begin() + it->position(), '\n'));
+      std::vector<std::string> words;
+      for (auto w = std::sregex_iterator(args.begin(), args.end(), kWord);
+           w != std::sregex_iterator(); ++w)
+        words.push_back(w->str());
+      if (words.empty()) continue;
+      const auto target = owner.find(words[0]);
+      if (target == owner.end() || target->second != module) {
+        out.push_back({file, line, words[0], module, target == owner.end() ? "" : target->second,
+                       "target_link_libraries(" + words[0] + " ...) adds to a target " + module +
+                           " does not define"});
+        continue;
+      }
+      for (size_t k = 1; k < words.size(); ++k) {
+        const auto linked = owner.find(words[k]);
+        if (linked == owner.end() || allowed.at(module).count(linked->second)) continue;
+        out.push_back({file, line, words[k], module, linked->second,
+                       words[0] + " links " + words[k] + ": " + module + " may not depend on " +
+                           linked->second});
       }
     }
   }

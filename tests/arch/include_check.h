@@ -34,6 +34,7 @@ struct Violation {
   int line = 0;
   std::string include;
   std::string from, to;  // modules; `to` empty when the include resolves to no module
+  std::string message;   // links: what is wrong (includes are described from the above)
   std::string Describe() const;
 };
 
@@ -45,5 +46,12 @@ inline const std::vector<std::string> kProductFolders = {"core", "formats", "hos
 // exists.  A file outside every module is a violation too (the table must
 // name every folder).
 std::vector<Violation> FindUpwardIncludes(const std::filesystem::path& root, const Layers& layers);
+
+// The same rule for the build: in every module folder's CMakeLists.txt, each
+// target_link_libraries names a target that folder defines (no folder adds to
+// another's target), and each Asgard target it links belongs to a module the
+// folder may depend on.  Targets no module folder defines (asgard_warnings,
+// third-party ones) are not checked.  `include` holds the target named.
+std::vector<Violation> FindUpwardLinks(const std::filesystem::path& root, const Layers& layers);
 
 }  // namespace asgard::arch

@@ -1,6 +1,7 @@
 // Dependencies point down only: the module table in docs/ARCHITECTURE.md is
-// the rule, every #include "..." of the product code must follow it, and the
-// check must catch an upward include in a fixture tree.
+// the rule, every #include "..." of the product code and every link of its
+// CMake targets must follow it, and the check must catch an upward include
+// and an upward link in a fixture tree.
 #include <gtest/gtest.h>
 
 #include <fstream>
@@ -71,6 +72,29 @@ TEST(IncludeDirection, AnUpwardIncludeInAFixtureIsReported) {
   EXPECT_NE(violations[0].Describe().find("core/geometry may not include core/render"),
             std::string::npos)
       << violations[0].Describe();
+}
+
+TEST(IncludeDirection, EveryTargetLinksDownAndOnlyItsOwnFolderAddsToIt) {
+  const auto violations = asgard::arch::FindUpwardLinks(kSource, DocumentedLayers());
+  EXPECT_TRUE(violations.empty()) << Describe(violations);
+}
+
+TEST(IncludeDirection, AnUpwardLinkAndAForeignTargetInAFixtureAreReported) {
+  // fixtures/upward: geometry links render; render's CMakeLists.txt adds to
+  // session's target.
+  const auto violations =
+      asgard::arch::FindUpwardLinks(kSource / "tests/arch/fixtures/upward", DocumentedLayers());
+  ASSERT_EQ(violations.size(), 2u) << Describe(violations);
+  EXPECT_EQ(violations[0].file, "core/geometry/CMakeLists.txt");
+  EXPECT_EQ(violations[0].line, 3);
+  EXPECT_EQ(violations[0].include, "asgard_render");
+  EXPECT_EQ(violations[0].to, "core/render");
+  EXPECT_EQ(violations[1].file, "core/render/CMakeLists.txt");
+  EXPECT_EQ(violations[1].line, 4);
+  EXPECT_EQ(violations[1].include, "asgard_session");
+  EXPECT_NE(violations[1].Describe().find("adds to a target core/render does not define"),
+            std::string::npos)
+      << violations[1].Describe();
 }
 
 TEST(IncludeDirection, TheTableMustBeACycleFreeListOfDeclaredModules) {
