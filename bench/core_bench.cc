@@ -13,13 +13,13 @@
 #include <fstream>
 #include <sstream>
 
-#include "core/app/pipeline.h"
+#include "core/pipeline/pipeline.h"
 #include "core/session/session.h"
 #include "tests/solver/reference_problems.h"
 
 namespace {
 
-using SceneRun = asgard::app::Run;
+using SceneRun = asgard::pipeline::Run;
 
 std::string ReadSample(const std::string& name) {
   std::ifstream in(std::string(ASGARD_SOURCE_DIR) + "/samples/" + name);
@@ -44,17 +44,17 @@ void Report(benchmark::State& state, const SceneRun& run) {
   state.counters["variables"] = static_cast<double>(run.equations->variables.size());
 }
 
-void Simulate(benchmark::State& state, const std::string& text, asgard::app::RunOptions opts) {
+void Simulate(benchmark::State& state, const std::string& text, asgard::pipeline::RunOptions opts) {
   SceneRun last;
   for (auto _ : state) {
-    last = asgard::app::Simulate(text, opts);
+    last = asgard::pipeline::Simulate(text, opts);
     benchmark::DoNotOptimize(last.ok);
   }
   Report(state, last);
 }
 
 void BM_Pendulum(benchmark::State& state) {
-  asgard::app::RunOptions opts;
+  asgard::pipeline::RunOptions opts;
   opts.solver.partition = state.range(0) != 0;
   state.SetLabel(opts.solver.partition ? "partitioned" : "one component");
   Simulate(state, ReadSample("pendulum.al"), opts);
@@ -81,7 +81,7 @@ std::string ManyPendulums(int n) {
 }
 
 void BM_HundredBodies(benchmark::State& state) {
-  asgard::app::RunOptions opts;
+  asgard::pipeline::RunOptions opts;
   opts.solver.partition = state.range(0) != 0;
   state.SetLabel(opts.solver.partition ? "partitioned" : "one component");
   Simulate(state, ManyPendulums(100), opts);
@@ -92,11 +92,11 @@ void BM_StiffLink(benchmark::State& state) {
   const double k = std::pow(10.0, static_cast<double>(state.range(0)));
   const double w = std::sqrt(k);
   const double finish = 10.0;
-  asgard::app::RunOptions opts;
+  asgard::pipeline::RunOptions opts;
   const std::string text = asgard::testing::DampedLink(k, 1.0, 1.0, finish);
   SceneRun last;
   for (auto _ : state) {
-    last = asgard::app::Simulate(text, opts);
+    last = asgard::pipeline::Simulate(text, opts);
     benchmark::DoNotOptimize(last.ok);
   }
   Report(state, last);

@@ -272,7 +272,7 @@ WpScene BallsInBoxScene(int n) {
   return s;
 }
 
-Trajectory SampleAsgard(const app::Run& run, const std::vector<double>& times) {
+Trajectory SampleAsgard(const pipeline::Run& run, const std::vector<double>& times) {
   Trajectory tr;
   tr.times = times;
   const auto& eq = *run.equations;
@@ -280,7 +280,8 @@ Trajectory SampleAsgard(const app::Run& run, const std::vector<double>& times) {
     std::vector<Pose> row;
     for (size_t b = 0; b < eq.bodies.size(); ++b) {
       if (eq.bodies[b].is_static) continue;
-      const app::BodyFrame f = app::SampleBody(eq, *run.simulation, static_cast<int>(b), t);
+      const pipeline::BodyFrame f =
+          pipeline::SampleBody(eq, *run.simulation, static_cast<int>(b), t);
       Pose p;
       for (int a = 0; a < 3; ++a) p.p[a] = f.p[a];
       for (int a = 0; a < 4; ++a) p.q[a] = f.q[a];
@@ -295,17 +296,17 @@ double SetupCpu(const std::string& text, int repeats) {
   std::vector<double> v;
   for (int i = 0; i < repeats; ++i) {
     const double c0 = ThreadCpuSeconds();
-    app::Run r = app::Check(text);
+    pipeline::Run r = pipeline::Check(text);
     v.push_back(ThreadCpuSeconds() - c0);
   }
   return Median(v);
 }
 
-AsgardRun RunAsgard(const std::string& text, const app::RunOptions& options,
+AsgardRun RunAsgard(const std::string& text, const pipeline::RunOptions& options,
                     const std::vector<double>& frame_times, double setup_cpu) {
   AsgardRun out;
   const double c0 = ThreadCpuSeconds();
-  app::Run run = app::Simulate(text, options);
+  pipeline::Run run = pipeline::Simulate(text, options);
   out.total_cpu = ThreadCpuSeconds() - c0;
   // The solver phase as the pipeline times it (simulation set-up and run);
   // scene evaluation and equation forming are excluded, as they are for
@@ -334,7 +335,7 @@ AsgardRun RunAsgard(const std::string& text, const app::RunOptions& options,
 // ---- TapeOde --------------------------------------------------------------
 
 TapeOde::TapeOde(const std::string& text) {
-  app::Run run = app::Check(text);
+  pipeline::Run run = pipeline::Check(text);
   if (!run.ok || !run.equations) return;
   eq_ = std::move(run.equations);
   const auto& eq = *eq_;

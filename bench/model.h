@@ -9,8 +9,8 @@
 #include <vector>
 
 #include "bench/harness.h"
-#include "core/app/pipeline.h"
 #include "core/expr/expr.h"
+#include "core/pipeline/pipeline.h"
 
 namespace asgard::physics {
 class JointSolver;
@@ -72,11 +72,11 @@ struct AsgardRun {
   int components = 0;
   long impacts = 0;
 };
-AsgardRun RunAsgard(const std::string& text, const app::RunOptions& options,
+AsgardRun RunAsgard(const std::string& text, const pipeline::RunOptions& options,
                     const std::vector<double>& frame_times, double setup_cpu = 0.0);
 // Median CPU time of evaluating the scene and forming its equations.
 double SetupCpu(const std::string& text, int repeats);
-Trajectory SampleAsgard(const app::Run& run, const std::vector<double>& times);
+Trajectory SampleAsgard(const pipeline::Run& run, const std::vector<double>& times);
 
 // Asgard's equations as an ODE y' = f(t, y) with its symbolic Jacobian
 // (compressed sparse columns), compiled to tapes.  Valid for scenes without

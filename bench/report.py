@@ -189,7 +189,7 @@ def main():
     if os.path.exists(os.path.join(out, "peers.txt")):
         md += ["- " + l.strip() for l in open(os.path.join(out, "peers.txt")) if l.strip()]
     md += ["",
-           "Timing: Asgard's time is the solver phase as `app::Simulate` measures it "
+           "Timing: Asgard's time is the solver phase as `pipeline::Simulate` measures it "
            "(simulation set-up and run, wall clock of a single thread; scene evaluation and "
            "equation forming are excluded); peers' time is thread CPU time of set-up plus "
            "integration. Each point is the median of up to 5 runs (fewer when one run is long; "
@@ -413,7 +413,7 @@ def main():
             md += [f"Editing one object's initial position in {case.split('_')[-1]} independent pendulums "
                    "through the editing model (core/session: SetParameter, then an incremental Simulate), "
                    "against the session's full run; the edited result is compared bit for bit with a "
-                   "from-scratch app::Simulate of the edited text.", "",
+                   "from-scratch pipeline::Simulate of the edited text.", "",
                    f"- Full run {fmt(fr)} s; incremental {fmt(inc)} s (median of {ed['incremental_after_edit']['runs']} edits, "
                    f"{ed['incremental_after_edit']['components']} components reset, {ed['incremental_after_edit']['steps']} steps) = "
                    f"{fmt(pct)}% → target ≤ 2%: **{'met' if pct is not None and pct <= 2 else 'missed'}**"

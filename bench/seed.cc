@@ -28,7 +28,7 @@ struct Timed {
 
 // Median solver time of a scene over cfg.repeats runs (fewer when long), in
 // a child process with the suite's timeout.
-Timed Measure(const Config& cfg, const std::string& text, const app::RunOptions& o) {
+Timed Measure(const Config& cfg, const std::string& text, const pipeline::RunOptions& o) {
   auto iso = RunIsolated(
       [&]() {
         std::vector<double> cpu;
@@ -151,7 +151,7 @@ void RunEdit(const Config& cfg, Csv& csv) {
           steps.push_back(static_cast<double>(s.last_stats().steps));
           if (s.last_stats().rebuilt) return std::string("error the edit rebuilt the equations");
           // Bit-for-bit: a from-scratch run of the edited text.
-          app::Run scratch = app::Simulate(s.text());
+          pipeline::Run scratch = pipeline::Simulate(s.text());
           const auto& eq = *scratch.equations;
           for (double t : FrameTimes(eq.t0, eq.t1))
             for (size_t v = 0; v < eq.variables.size(); ++v) {
@@ -196,7 +196,7 @@ void RunFigure57(const Config& cfg) {
     // Collisions off, as in the seed's experiment (and as for a lone body,
     // which never gets a collision monitor); "partitioned_collisions_on"
     // shows what the monitor costs when no pair can ever touch.
-    app::RunOptions part, one, coll;
+    pipeline::RunOptions part, one, coll;
     part.collisions = false;
     one = part;
     one.solver.partition = false;
@@ -264,7 +264,7 @@ void RunFigure511(const Config& cfg) {
   for (const Variant& v : variants) {
     bool gave_up = false;
     for (int n : ns) {
-      app::RunOptions o;
+      pipeline::RunOptions o;
       o.collisions = v.collisions;
       o.solver.partition = v.partition;
       o.solver.schedule = v.schedule;
@@ -301,11 +301,11 @@ void RunSkip(const Config& cfg) {
   }
   const std::string alone = body + "simulator -finish 10\n";
   const std::string with = body + idle.str() + "simulator -finish 10\n";
-  app::RunOptions o;
+  pipeline::RunOptions o;
   o.collisions = false;
   const Timed ta = Measure(cfg, alone, o);
   const Timed tw = Measure(cfg, with, o);
-  app::RunOptions one = o;
+  pipeline::RunOptions one = o;
   one.solver.partition = false;
   const Timed t1 = Measure(cfg, with, one);
   for (auto [name, t] : {std::pair<const char*, const Timed*>{"active_alone", &ta},

@@ -31,15 +31,15 @@ struct Case {
   std::function<Outcome()> run;
 };
 
-app::RunOptions Opts(double rtol = 1e-6, double atol = 1e-9) {
-  app::RunOptions o;
+pipeline::RunOptions Opts(double rtol = 1e-6, double atol = 1e-9) {
+  pipeline::RunOptions o;
   o.solver.rtol = rtol;
   o.solver.atol = atol;
   o.use_scene_tolerances = false;
   return o;
 }
 
-bool HasNan(const app::Run& run) {
+bool HasNan(const pipeline::Run& run) {
   const auto& eq = *run.equations;
   for (size_t v = 0; v < eq.variables.size(); ++v)
     for (double t : {eq.t0, 0.5 * (eq.t0 + eq.t1), eq.t1})
@@ -48,7 +48,7 @@ bool HasNan(const app::Run& run) {
 }
 
 // Simulates; on a solver error or NaN returns the outcome to report.
-std::optional<Outcome> Failed(const app::Run& run) {
+std::optional<Outcome> Failed(const pipeline::Run& run) {
   Outcome o;
   if (!run.ok) {
     o.solver_failed = true;
@@ -72,10 +72,10 @@ struct LinkSpec {
   Eigen::Vector3d off2;
   double k;
 };
-double Energy(const app::Run& run, double t, double g, const std::vector<LinkSpec>& links) {
+double Energy(const pipeline::Run& run, double t, double g, const std::vector<LinkSpec>& links) {
   const auto& eq = *run.equations;
   auto pose = [&](int b, Eigen::Vector3d& p, Eigen::Matrix3d& R) {
-    const app::BodyFrame f = app::SampleBody(eq, *run.simulation, b, t);
+    const pipeline::BodyFrame f = pipeline::SampleBody(eq, *run.simulation, b, t);
     p = Eigen::Vector3d(f.p[0], f.p[1], f.p[2]);
     R = Eigen::Quaterniond(f.q[0], f.q[1], f.q[2], f.q[3]).toRotationMatrix();
     return f;
@@ -84,7 +84,7 @@ double Energy(const app::Run& run, double t, double g, const std::vector<LinkSpe
   for (size_t b = 0; b < eq.bodies.size(); ++b) {
     Eigen::Vector3d p;
     Eigen::Matrix3d R;
-    const app::BodyFrame f = pose(static_cast<int>(b), p, R);
+    const pipeline::BodyFrame f = pose(static_cast<int>(b), p, R);
     const Eigen::Vector3d v(f.v[0], f.v[1], f.v[2]), w(f.w[0], f.w[1], f.w[2]);
     const Eigen::Vector3d wb = R.transpose() * w;
     e += 0.5 * eq.bodies[b].mass * v.squaredNorm() + 0.5 * wb.dot(eq.bodies[b].inertia * wb) +
@@ -107,7 +107,7 @@ double Energy(const app::Run& run, double t, double g, const std::vector<LinkSpe
 // Relative energy drift over [0, T], written to energy.csv at 1 s intervals.
 Outcome Drift(const std::string& name, const std::string& text, double g,
               const std::vector<LinkSpec>& links, double T, const std::string& csv_path) {
-  app::Run run = app::Simulate(text, Opts());
+  pipeline::Run run = pipeline::Simulate(text, Opts());
   if (auto f = Failed(run)) return *f;
   const double e0 = Energy(run, 0, g, links);
   double worst = 0;
@@ -152,7 +152,7 @@ void RunStress(const Config& cfg) {
     cases.push_back({"stiffness_k1e" + std::to_string(e), "max error / size", 1e-4, [k]() {
                        const WpScene s = StiffLinkScene(k);
                        const auto frames = FrameTimes(0, s.t1);
-                       app::Run run = app::Simulate(s.text, Opts(1e-6, 1e-6));
+                       pipeline::Run run = pipeline::Simulate(s.text, Opts(1e-6, 1e-6));
                        if (auto f = Failed(run)) return *f;
                        Outcome o;
                        o.value = TrajectoryError(SampleAsgard(run, frames), s.exact(frames),
@@ -174,7 +174,7 @@ void RunStress(const Config& cfg) {
                            Real(M) +
                            " -init_pos {0 0 0} -ct 0\n"
                            "link -body1 a -body2 b -tightness 1e4\nsimulator -finish 2\n";
-                       app::Run run = app::Simulate(text, Opts());
+                       pipeline::Run run = pipeline::Simulate(text, Opts());
                        if (auto f = Failed(run)) return *f;
                        const double mu = M / (1 + M), w = std::sqrt(k / mu);
                        double worst = 0;
@@ -225,7 +225,7 @@ void RunStress(const Config& cfg) {
                                               "body top -shape ball -mass 1 -moment {1 2 2.5} "
                                               "-init_drot {0.001 3 0.001}\nsimulator -finish " +
                                               Real(3.3 * P) + "\n";
-                     app::Run run = app::Simulate(text, Opts(1e-8, 1e-10));
+                     pipeline::Run run = pipeline::Simulate(text, Opts(1e-8, 1e-10));
                      if (auto f = Failed(run)) return *f;
                      // Upward zero crossings of body w2 are one period apart.
                      std::vector<double> ups;
@@ -260,7 +260,7 @@ void RunStress(const Config& cfg) {
                          BallShape() + "body s -shape ball -static 1 -init_pos {0 0 0}\n" +
                          "body m -shape ball -mass 1 -init_pos {-3 " + Real(b) +
                          " 0} -init_dpos {4 0 0}\nsimulator -finish 2\n";
-                     app::Run run = app::Simulate(text, Opts());
+                     pipeline::Run run = pipeline::Simulate(text, Opts());
                      if (auto f = Failed(run)) return *f;
                      const int m = run.equations->bodies[1].first_var;
                      const Eigen::Vector3d v(run.simulation->Value(m + 3, 2),
@@ -281,7 +281,7 @@ void RunStress(const Config& cfg) {
                          "body c -shape ball -mass 1 -init_pos {0 0 0}\n"
                          "body r -shape ball -mass 1 -init_pos {3 0 0} -init_dpos {-2 0 0}\n"
                          "simulator -finish 3\n";
-                     app::Run run = app::Simulate(text, Opts());
+                     pipeline::Run run = pipeline::Simulate(text, Opts());
                      if (auto f = Failed(run)) return *f;
                      const double exact[3] = {-2, 0, 2};
                      double worst = 0;
@@ -305,7 +305,7 @@ void RunStress(const Config& cfg) {
                          "body p -shape plate -static 1 -init_pos {0 0 0}\n"
                          "body b -shape small -mass 1 -init_pos {-1 0 0} -init_dpos {1000 0 0}\n"
                          "simulator -finish 0.01\n";
-                     app::Run run = app::Simulate(text, Opts());
+                     pipeline::Run run = pipeline::Simulate(text, Opts());
                      if (auto f = Failed(run)) return *f;
                      const int m = run.equations->bodies[1].first_var;
                      const double x = run.simulation->Value(m, 0.01);
@@ -321,7 +321,7 @@ void RunStress(const Config& cfg) {
                                               "body b -shape ball -mass 1\n"
                                               "force -body b -x {t < 1 ? 1 : 0} -y 0 -z 0\n"
                                               "simulator -finish 3\n";
-                     app::Run run = app::Simulate(text, Opts());
+                     pipeline::Run run = pipeline::Simulate(text, Opts());
                      if (auto f = Failed(run)) return *f;
                      double worst = 0;
                      for (double t : FrameTimes(0, 3, 300)) {
@@ -346,7 +346,7 @@ void RunStress(const Config& cfg) {
              "body f -shape ball -mass 1 -ct 0\n"
              "link -body1 f -trajectory tr -tightness 1e6\n"
              "simulator -finish 3\n";
-         app::Run run = app::Simulate(text, Opts());
+         pipeline::Run run = pipeline::Simulate(text, Opts());
          if (auto f = Failed(run)) return *f;
          const double knots[4][3] = {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}};
          double worst = 0, follow = 0;
@@ -371,10 +371,10 @@ void RunStress(const Config& cfg) {
                                 "simulator -finish 10\n";
                        };
                        const auto frames = FrameTimes(0, 10);
-                       app::RunOptions o;  // scene defaults: rtol 1e-6, atol 1e-9
-                       app::Run a = app::Simulate(text(scale), o);
+                       pipeline::RunOptions o;  // scene defaults: rtol 1e-6, atol 1e-9
+                       pipeline::Run a = pipeline::Simulate(text(scale), o);
                        if (auto f = Failed(a)) return *f;
-                       app::Run ref = app::Simulate(text(1.0), Opts(1e-10, 1e-12));
+                       pipeline::Run ref = pipeline::Simulate(text(1.0), Opts(1e-10, 1e-12));
                        Trajectory ta = SampleAsgard(a, frames), tr = SampleAsgard(ref, frames);
                        for (auto& row : ta.poses)
                          for (auto& p : row)

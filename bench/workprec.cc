@@ -129,7 +129,7 @@ void RunWorkPrecision(const Config& cfg) {
       }
     }
     if (ref.empty()) {
-      app::RunOptions o;
+      pipeline::RunOptions o;
       o.solver.rtol = 1e-11, o.solver.atol = 1e-13;
       o.collisions = s.collisions;
       AsgardRun r = RunAsgard(s.text, o, frames);
@@ -155,7 +155,7 @@ void RunWorkPrecision(const Config& cfg) {
     for (double tol : Tolerances(cfg)) {
       auto iso = RunIsolated(
           [&]() {
-            app::RunOptions o;
+            pipeline::RunOptions o;
             o.solver.rtol = tol, o.solver.atol = tol;
             o.use_scene_tolerances = false;
             o.collisions = s.collisions;
@@ -249,7 +249,7 @@ void RunStiffSweep(const Config& cfg) {
             [&]() {
               Point p;
               if (code == 0) {
-                app::RunOptions o;
+                pipeline::RunOptions o;
                 o.solver.rtol = tol, o.solver.atol = tol;
                 AsgardRun r = RunAsgard(s.text, o, frames, setup);
                 p.ok = r.ok;

@@ -20,6 +20,7 @@
 #include <string>
 #include <vector>
 
+#include "formats/cli/cli.h"
 #include "formats/document/file.h"
 #include "formats/document/xml.h"
 #include "host-shim/host_document.h"
@@ -28,6 +29,8 @@
 
 namespace asgard::host {
 namespace {
+
+using document::Extension;
 
 const char* const kHelp = R"(Usage: dochost convert IN -o OUT [options]
        dochost verb IN VERB [ARGS] [options]
@@ -87,24 +90,7 @@ struct Options {
   bool handles = false, quiet = false;
 };
 
-int Usage(const std::string& message) {
-  std::cerr << "dochost: " << message << "\n\n" << kHelp;
-  return 2;
-}
-
-std::string Extension(const std::string& path) {
-  const size_t dot = path.rfind('.'), slash = path.rfind('/');
-  if (dot == std::string::npos || (slash != std::string::npos && dot < slash)) return "";
-  std::string e = path.substr(dot + 1);
-  for (char& c : e) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
-  return e;
-}
-
-bool Number(const std::string& s, double& v) {
-  char* end = nullptr;
-  v = std::strtod(s.c_str(), &end);
-  return !s.empty() && end && *end == '\0' && std::isfinite(v);
-}
+int Usage(const std::string& message) { return cli::Usage("dochost", message, kHelp); }
 
 // Returns an exit status when parsing ends the program (help, usage).
 std::optional<int> Parse(const std::vector<std::string>& args, Options& o) {
@@ -116,7 +102,7 @@ std::optional<int> Parse(const std::vector<std::string>& args, Options& o) {
     };
     auto number = [&](double& out) {
       auto v = value();
-      return v && Number(*v, out);
+      return v && cli::ParseNumber(*v, out);
     };
     double d = 0;
     if (a == "-h" || a == "--help") {
@@ -247,7 +233,8 @@ struct Host {
     a.height = item.height;
     a.scene = item.text;
     if (item.simulated) {
-      const double rate = std::min(item.frame_rate, 30.0);
+      // A page holds every frame as a PNG: no more than the usual rate.
+      const double rate = std::min(item.frame_rate, protocol::kDefaultFrameRate);
       int n = static_cast<int>(std::floor((item.t1 - item.t0) * rate + 1e-9)) + 1;
       n = std::clamp(n, 1, 300);
       const double step = n > 1 ? std::min(1.0 / rate, (item.t1 - item.t0) / (n - 1)) : 0;
@@ -358,9 +345,16 @@ int RunVerb(Host& h) {
     }
     return true;
   };
-  if (o.verb == "recompute" || o.verb == "restart") {
-    const bool ok = o.verb == "restart" ? h.doc->Restart(item) : h.doc->SetText(item, item.text);
-    if (!ok)
+  if (o.verb == "restart") {
+    // Only the slave process: the document is written only to -o OUT.
+    if (!h.doc->Restart(item))
+      return h.Fail(o.in + ": animation " + std::to_string(item.index) + ": " + item.message);
+    if (!o.quiet)
+      std::cout << "animation " << item.index << ": restarted: " << item.message << "\n";
+    return o.out.empty() ? 0 : h.Write(o.out);
+  }
+  if (o.verb == "recompute") {
+    if (!h.doc->SetText(item, item.text))
       return h.Fail(o.in + ": animation " + std::to_string(item.index) + ": " + item.message);
     bool live = false;
     const Picture p = h.doc->Frame(item, ASGARD_DEVICE_PAGE, item.width * 2, item.height * 2,
@@ -373,7 +367,7 @@ int RunVerb(Host& h) {
   if (o.verb == "pause" || o.verb == "seek") {
     double t = 0;
     if (o.verb_args.size() > 1 || (o.verb == "seek" && o.verb_args.empty()) ||
-        (!o.verb_args.empty() && !Number(o.verb_args[0], t)))
+        (!o.verb_args.empty() && !cli::ParseNumber(o.verb_args[0], t)))
       return Usage(o.verb + " takes one time in seconds");
     if (!o.verb_args.empty()) o.time = t;
     if (!need_simulated()) return 1;

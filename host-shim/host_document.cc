@@ -69,7 +69,7 @@ cairo_status_t ReadPng(void* closure, unsigned char* data, unsigned int length) 
 
 }  // namespace
 
-std::string EncodePng(const Picture& p) {
+cairo_surface_t* PictureSurface(const Picture& p) {
   cairo_surface_t* s = cairo_image_surface_create(CAIRO_FORMAT_RGB24, p.width, p.height);
   cairo_surface_flush(s);
   unsigned char* data = cairo_image_surface_get_data(s);
@@ -82,6 +82,11 @@ std::string EncodePng(const Picture& p) {
                src[4 * x + 2];
   }
   cairo_surface_mark_dirty(s);
+  return s;
+}
+
+std::string EncodePng(const Picture& p) {
+  cairo_surface_t* s = PictureSurface(p);
   std::string out;
   cairo_surface_write_to_png_stream(s, AppendPng, &out);
   cairo_surface_destroy(s);

@@ -14,12 +14,15 @@
 // SetText and SetPoster.
 #pragma once
 
+#include <cairo.h>
+
 #include <functional>
 #include <map>
 #include <optional>
 #include <string>
 #include <vector>
 
+#include "core/protocol/protocol.h"
 #include "formats/document/document.h"
 #include "host-shim/medium.h"
 
@@ -33,6 +36,8 @@ struct Picture {
   bool empty() const { return rgba.empty(); }
 };
 std::string EncodePng(const Picture& picture);
+// A Cairo RGB24 image surface with the picture's pixels; the caller destroys it.
+cairo_surface_t* PictureSurface(const Picture& picture);
 std::optional<Picture> DecodePng(const std::string& png);
 
 struct Embedded {
@@ -46,7 +51,7 @@ struct Embedded {
   std::string message;            // status line for captions
   int width = 360, height = 240;  // presentation's desired size, points
   bool simulated = false;
-  double t0 = 0, t1 = 0, frame_rate = 30;
+  double t0 = 0, t1 = 0, frame_rate = protocol::kDefaultFrameRate;
   Picture poster;  // from the document or the last frame drawn
   bool poster_from_document = false;
   std::map<int, asgard_rendition*> renditions;  // device → rendition

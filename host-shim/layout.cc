@@ -177,18 +177,7 @@ void DrawRegion(cairo_t* cr, const Placed& p, const RegionContent& content) {
   cairo_clip(cr);
   const Picture& pic = content.picture;
   if (!pic.empty()) {
-    cairo_surface_t* s = cairo_image_surface_create(CAIRO_FORMAT_RGB24, pic.width, pic.height);
-    cairo_surface_flush(s);
-    unsigned char* data = cairo_image_surface_get_data(s);
-    const int stride = cairo_image_surface_get_stride(s);
-    for (int y = 0; y < pic.height; ++y) {
-      auto* row = reinterpret_cast<uint32_t*>(data + static_cast<size_t>(y) * stride);
-      const uint8_t* src = &pic.rgba[static_cast<size_t>(y) * pic.width * 4];
-      for (int x = 0; x < pic.width; ++x)
-        row[x] = 0xff000000u | (uint32_t(src[4 * x]) << 16) | (uint32_t(src[4 * x + 1]) << 8) |
-                 src[4 * x + 2];
-    }
-    cairo_surface_mark_dirty(s);
+    cairo_surface_t* s = PictureSurface(pic);
     cairo_translate(cr, p.x, p.y);
     cairo_scale(cr, p.w / pic.width, p.h / pic.height);
     cairo_set_source_surface(cr, s, 0, 0);

@@ -22,6 +22,7 @@
 #include <vector>
 
 #include "asgard/medium_abi.h"
+#include "core/protocol/protocol.h"
 #include "medium-plugin/slave.h"
 
 using asgard::medium::CallResult;
@@ -40,7 +41,7 @@ struct asgard_node {
   int generation = 0;
   int32_t state = ASGARD_NODE_LOADED;
   std::string message;
-  double t0 = 0, t1 = 0, frame_rate = 30;
+  double t0 = 0, t1 = 0, frame_rate = asgard::protocol::kDefaultFrameRate;
   int bodies = 0;
   size_t next_offset = 0;
   int next_rendition = 1;
@@ -162,7 +163,10 @@ int32_t StatusOf(const CallResult& r, asgard_node* node, asgard_error* error) {
     case CallStatus::kOk:
       return ASGARD_OK;
     case CallStatus::kRemoteError:
-      return SetError(error, r.remote_code == 1 ? ASGARD_ERR_SCENE : ASGARD_ERR_INVALID, r.message);
+      return SetError(
+          error,
+          r.remote_code == asgard::protocol::kSceneError ? ASGARD_ERR_SCENE : ASGARD_ERR_INVALID,
+          r.message);
     case CallStatus::kTimeout:
       node->state = ASGARD_NODE_HUNG;
       node->message = r.message;
@@ -231,14 +235,14 @@ int32_t RunSimulation(asgard_node* node, const char* method, const json& params,
       progress(user, f, msg);
     }
   });
-  if (r.status == CallStatus::kRemoteError && r.remote_code == 1) {
+  if (r.status == CallStatus::kRemoteError && r.remote_code == asgard::protocol::kSceneError) {
     node->state = ASGARD_NODE_SCENE_ERROR;
     node->message = r.message;
   }
   if (const int32_t s = StatusOf(r, node, error); s != ASGARD_OK) return s;
   node->t0 = r.result.value("t0", 0.0);
   node->t1 = r.result.value("t1", 0.0);
-  node->frame_rate = r.result.value("frame_rate", 30.0);
+  node->frame_rate = r.result.value("frame_rate", asgard::protocol::kDefaultFrameRate);
   node->bodies = r.result.value("bodies", 0);
   node->state = ASGARD_NODE_SIMULATED;
   char msg[160];
@@ -354,8 +358,10 @@ int32_t RenditionCreate(asgard_node* node, const char* view, int32_t device, int
                         int32_t height, asgard_rendition** out, asgard_error* error) {
   return Guard(error, [&]() -> int32_t {
     if (!node || !out) return SetError(error, ASGARD_ERR_INVALID, "bad arguments");
-    if (width < 1 || height < 1 || width > 8192 || height > 8192)
-      return SetError(error, ASGARD_ERR_INVALID, "a rendition is 1..8192 pixels each way");
+    constexpr int kMax = asgard::protocol::kMaxRenditionSide;
+    if (width < 1 || height < 1 || width > kMax || height > kMax)
+      return SetError(error, ASGARD_ERR_INVALID,
+                      "a rendition is 1.." + std::to_string(kMax) + " pixels each way");
     auto r = std::make_unique<asgard_rendition>();
     r->node = node;
     r->id = node->next_rendition++;

@@ -133,9 +133,8 @@ void SlaveProcess::Kill(const std::string& why) {
 }
 
 bool SlaveProcess::Send(const std::string& bytes) {
-  const uint32_t n = static_cast<uint32_t>(bytes.size());
-  std::string framed = {static_cast<char>(n >> 24), static_cast<char>(n >> 16),
-                        static_cast<char>(n >> 8), static_cast<char>(n)};
+  const auto head = protocol::EncodeLength(static_cast<uint32_t>(bytes.size()));
+  std::string framed(head.begin(), head.end());
   framed += bytes;
   size_t done = 0;
   while (done < framed.size()) {
@@ -191,14 +190,13 @@ CallResult SlaveProcess::Call(const std::string& method, const json& params,
   const int64_t silence = static_cast<int64_t>(timeout_ * 1000);
   int64_t deadline = NowMs() + silence;
   for (;;) {
-    char head[4];
-    int r = ReadExact(head, 4, deadline);
+    unsigned char head[4];
+    int r = ReadExact(reinterpret_cast<char*>(head), 4, deadline);
     if (r < 0)
       return fail(CallStatus::kTimeout, "asgard-core did not answer '" + method + "' within " +
                                             Seconds(timeout_) + " s and was stopped");
     if (r == 0) return died("while answering '" + method + "'");
-    const uint32_t n = (uint32_t(uint8_t(head[0])) << 24) | (uint32_t(uint8_t(head[1])) << 16) |
-                       (uint32_t(uint8_t(head[2])) << 8) | uint8_t(head[3]);
+    const uint32_t n = protocol::DecodeLength(head);
     if (n > kMaxMessage)
       return fail(CallStatus::kProtocol, "protocol error: asgard-core sent a message of " +
                                              std::to_string(n) + " bytes; it was stopped");

@@ -20,10 +20,14 @@
 #include <nlohmann/json.hpp>
 #include <string>
 
+#include "core/protocol/protocol.h"
+
 namespace asgard::medium {
 
-inline constexpr size_t kFrameMemory = size_t{256} << 20;  // virtual; pages are touched on use
-inline constexpr uint32_t kMaxMessage = 64u << 20;
+// One frame of the largest rendition; virtual, pages are touched on use.
+inline constexpr size_t kFrameMemory =
+    size_t{protocol::kMaxRenditionSide} * protocol::kMaxRenditionSide * 4;
+using protocol::kMaxMessage;
 
 enum class CallStatus { kOk, kRemoteError, kDied, kTimeout, kProtocol, kNotRunning };
 

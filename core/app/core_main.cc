@@ -11,13 +11,14 @@
 // of this animation are managed by this process").  Requests are handled one
 // at a time; `simulate` streams progress notifications, which double as the
 // heartbeat the host's watchdog waits for.  Every request is answered — a
-// malformed one with a JSON-RPC error (-32700 parse, -32600 invalid request,
-// -32601 unknown method, -32602 bad params) — and no exception leaves a
-// handler.  Only a frame header that cannot be trusted (a length above
-// kMaxMessage) ends the process, after an error reply, since the stream can
-// no longer be resynchronised.  The scene lives in a core/session Session:
-// `update` adopts the new text through it (change analysis, one undo
-// history) and `simulate` re-simulates incrementally; `edit` applies a
+// malformed one with a JSON-RPC error (protocol::ErrorCode, core/protocol:
+// the header the plugin reads the same codes from) — and no exception leaves
+// a handler.  Only a frame header that cannot be trusted (a length above
+// protocol::kMaxMessage) ends the process, after an error reply, since the
+// stream can no longer be resynchronised.  The scene lives in a core/session
+// Session, which evaluates each text once: `load` and `update` adopt the new
+// text through it (change analysis, one undo history) and check the scene it
+// evaluated, `simulate` re-simulates incrementally; `edit` applies a
 // graphical edit and answers with the text patches.
 //
 // Test hooks (environment ASGARD_CORE_FAULT): "hang-on-simulate" stops
@@ -38,18 +39,19 @@
 #include <string>
 #include <thread>
 
-#include "core/app/pipeline.h"
-#include "core/session/session.h"
+#include "core/pipeline/pipeline.h"
+#include "core/protocol/protocol.h"
 #include "core/render/sampler.h"
 #include "core/render/shaded.h"
 #include "core/render/wire.h"
+#include "core/session/session.h"
 
 namespace {
 
 using nlohmann::json;
 using namespace asgard;
-
-constexpr uint32_t kMaxMessage = 64u << 20;
+using protocol::kMaxMessage;
+using enum protocol::ErrorCode;
 
 const char* const kHelp = R"(Usage: asgard-core [--fd N] [--shm-fd N --shm-size BYTES]
 
@@ -68,10 +70,12 @@ Exit status 0 after shutdown or end of input, 2 on bad usage or a broken
 stream.
 )";
 
-bool ReadAll(int fd, void* buf, size_t n) {
-  auto* p = static_cast<char*>(buf);
+// Moves all n bytes with `io` (read or write), retrying on EINTR; false at
+// the end of the stream or on an error.
+template <typename Char, typename Io>
+bool TransferAll(Char* p, size_t n, Io io) {
   while (n > 0) {
-    const ssize_t r = ::read(fd, p, n);
+    const ssize_t r = io(p, n);
     if (r < 0 && errno == EINTR) continue;
     if (r <= 0) return false;
     p += r, n -= static_cast<size_t>(r);
@@ -79,15 +83,14 @@ bool ReadAll(int fd, void* buf, size_t n) {
   return true;
 }
 
+bool ReadAll(int fd, void* buf, size_t n) {
+  return TransferAll(static_cast<char*>(buf), n,
+                     [fd](char* p, size_t k) { return ::read(fd, p, k); });
+}
+
 bool WriteAll(int fd, const void* buf, size_t n) {
-  const auto* p = static_cast<const char*>(buf);
-  while (n > 0) {
-    const ssize_t r = ::write(fd, p, n);
-    if (r < 0 && errno == EINTR) continue;
-    if (r <= 0) return false;
-    p += r, n -= static_cast<size_t>(r);
-  }
-  return true;
+  return TransferAll(static_cast<const char*>(buf), n,
+                     [fd](const char* p, size_t k) { return ::write(fd, p, k); });
 }
 
 struct RpcError {
@@ -114,10 +117,9 @@ class Slave {
     for (;;) {
       unsigned char head[4];
       if (!ReadAll(in_, head, 4)) return 0;  // the host closed the channel
-      const uint32_t n = (uint32_t(head[0]) << 24) | (uint32_t(head[1]) << 16) |
-                         (uint32_t(head[2]) << 8) | head[3];
+      const uint32_t n = protocol::DecodeLength(head);
       if (n > kMaxMessage) {
-        SendError(nullptr, -32600,
+        SendError(nullptr, kInvalidRequest,
                   "message length " + std::to_string(n) + " exceeds the limit of " +
                       std::to_string(kMaxMessage) + " bytes; the stream cannot be resynchronised");
         return 2;
@@ -131,11 +133,9 @@ class Slave {
  private:
   void Send(const json& message) {
     const std::string s = message.dump(-1, ' ', false, json::error_handler_t::replace);
-    const uint32_t n = static_cast<uint32_t>(s.size());
-    const unsigned char head[4] = {
-        static_cast<unsigned char>(n >> 24), static_cast<unsigned char>(n >> 16),
-        static_cast<unsigned char>(n >> 8), static_cast<unsigned char>(n)};
-    if (!WriteAll(out_, head, 4) || !WriteAll(out_, s.data(), s.size())) std::_Exit(0);
+    const auto head = protocol::EncodeLength(static_cast<uint32_t>(s.size()));
+    if (!WriteAll(out_, head.data(), head.size()) || !WriteAll(out_, s.data(), s.size()))
+      std::_Exit(0);
   }
   void SendError(const json* id, int code, const std::string& message) {
     Send({{"jsonrpc", "2.0"},
@@ -147,13 +147,13 @@ class Slave {
   bool Handle(const std::string& body) {
     const json request = json::parse(body, nullptr, false);
     if (request.is_discarded()) {
-      SendError(nullptr, -32700, "parse error: the message is not JSON");
+      SendError(nullptr, kParseError, "parse error: the message is not JSON");
       return true;
     }
     if (!request.is_object() || !request.contains("method") || !request["method"].is_string() ||
         (request.contains("params") && !request["params"].is_object())) {
       const json id = request.is_object() && request.contains("id") ? request["id"] : json();
-      SendError(&id, -32600, "invalid request: expected an object with a string 'method'");
+      SendError(&id, kInvalidRequest, "invalid request: expected an object with a string 'method'");
       return true;
     }
     const json id = request.value("id", json());
@@ -169,16 +169,16 @@ class Slave {
     } catch (const RpcError& e) {
       SendError(&id, e.code, e.message);
     } catch (const json::exception& e) {
-      SendError(&id, -32602, std::string("invalid params: ") + e.what());
+      SendError(&id, kInvalidParams, std::string("invalid params: ") + e.what());
     } catch (const std::exception& e) {
-      SendError(&id, -32603, std::string("internal error: ") + e.what());
+      SendError(&id, kInternalError, std::string("internal error: ") + e.what());
     }
     return true;
   }
 
   static std::string Text(const json& params) {
     if (!params.contains("text") || !params["text"].is_string())
-      throw RpcError{-32602, "invalid params: 'text' must be a string"};
+      throw RpcError{kInvalidParams, "invalid params: 'text' must be a string"};
     return params["text"];
   }
 
@@ -198,12 +198,12 @@ class Slave {
     if (method == "frame") return Frame(params);
     if (method == "edit") return Edit(params);
     if (method == "undo" || method == "redo") {
-      if (!session_) throw RpcError{1, "no scene is loaded"};
+      if (!session_) throw RpcError{kSceneError, "no scene is loaded"};
       const bool done = method == "undo" ? session_->Undo() : session_->Redo();
       return {{"ok", done}, {"text", session_->text()}};
     }
     if (method == "command") return Command(params.at("line").get<std::string>());
-    throw RpcError{-32601, "unknown method '" + method + "'"};
+    throw RpcError{kMethodNotFound, "unknown method '" + method + "'"};
   }
 
   // The session keeps one history and simulates incrementally: after an
@@ -223,7 +223,8 @@ class Slave {
                              {"name", c.name},
                              {"change", session::ChangeName(c.change)}});
     }
-    app::Run check = app::Check(text_);
+    // The scene the session evaluated: the text is not evaluated again.
+    const pipeline::Run check = pipeline::Check(session_->scene());
     json diagnostics = json::array();
     for (const auto& d : check.diagnostics)
       diagnostics.push_back(
@@ -238,18 +239,18 @@ class Slave {
   // offsets into the previous text, end exclusive, with 1-based lines and
   // columns counted in bytes) and the new text.
   json Edit(const json& params) {
-    if (!session_) throw RpcError{1, "no scene is loaded"};
+    if (!session_) throw RpcError{kSceneError, "no scene is loaded"};
     if (!params.contains("element") || !params["element"].is_string() ||
         !params.contains("param") || !params["param"].is_string() ||
         !params.contains("values") || !params["values"].is_array())
-      throw RpcError{-32602, "invalid params: edit needs element, param and values"};
+      throw RpcError{kInvalidParams, "invalid params: edit needs element, param and values"};
     std::vector<double> values;
     for (const auto& v : params["values"]) {
-      if (!v.is_number()) throw RpcError{-32602, "invalid params: values must be numbers"};
+      if (!v.is_number()) throw RpcError{kInvalidParams, "invalid params: values must be numbers"};
       values.push_back(v.get<double>());
     }
     const auto r = session_->SetParameter(params["element"], params["param"], values);
-    if (!r.ok) throw RpcError{1, r.error};
+    if (!r.ok) throw RpcError{kSceneError, r.error};
     json edits = json::array();
     for (const auto& e : r.edits)
       edits.push_back({{"begin", e.begin}, {"end", e.end}, {"text", e.text},
@@ -267,9 +268,9 @@ class Slave {
     sampler_.reset();
     if (!session_) session_ = std::make_unique<session::Session>(text_);
     auto last = std::chrono::steady_clock::now() - std::chrono::seconds(1);
-    double t0 = 0, t1 = 1;
-    if (auto check = app::Check(text_); check.ok)
-      t0 = check.equations->t0, t1 = check.equations->t1;
+    // The interval for the progress fraction, from the session's scene.
+    const scene::Simulator simulator = session_->scene().simulator.value_or(scene::Simulator{});
+    const double t0 = simulator.start, t1 = simulator.finish;
     auto progress = [&](double t) {
       const auto now = std::chrono::steady_clock::now();
       if (now - last < std::chrono::milliseconds(50)) return;
@@ -294,9 +295,10 @@ class Slave {
       if (run_ && !run_->solver_error.empty())
         message += (message.empty() ? "" : "; ") + run_->solver_error;
       run_ = nullptr;
-      throw RpcError{1, message.empty() ? "the scene could not be simulated" : message};
+      throw RpcError{kSceneError, message.empty() ? "the scene could not be simulated" : message};
     }
-    sampler_ = std::make_unique<render::SceneSampler>(*run_);
+    sampler_ =
+        std::make_unique<render::SceneSampler>(run_->scene, *run_->equations, *run_->simulation);
     view_ = *sampler_->SceneView();
     return {{"t0", sampler_->t0()},
             {"t1", sampler_->t1()},
@@ -312,11 +314,13 @@ class Slave {
     r.width = params.at("width").get<int>();
     r.height = params.at("height").get<int>();
     r.offset = params.at("offset").get<size_t>();
-    if (r.width < 1 || r.height < 1 || r.width > 8192 || r.height > 8192)
-      throw RpcError{-32602, "invalid params: rendition size must be 1..8192 each way"};
+    constexpr int kMax = protocol::kMaxRenditionSide;
+    if (r.width < 1 || r.height < 1 || r.width > kMax || r.height > kMax)
+      throw RpcError{kInvalidParams, "invalid params: rendition size must be 1.." +
+                                         std::to_string(kMax) + " each way"};
     const size_t bytes = static_cast<size_t>(r.width) * r.height * 4;
     if (!shm_ || r.offset > shm_size_ || bytes > shm_size_ - r.offset)
-      throw RpcError{-32602, "invalid params: the rendition does not fit in shared memory"};
+      throw RpcError{kInvalidParams, "invalid params: the rendition does not fit in shared memory"};
     renditions_[params.at("rendition").get<int>()] = std::move(r);
     return {{"ok", true}};
   }
@@ -325,8 +329,8 @@ class Slave {
     const int id = params.at("rendition").get<int>();
     auto it = renditions_.find(id);
     if (it == renditions_.end())
-      throw RpcError{-32602, "invalid params: no rendition " + std::to_string(id)};
-    if (!sampler_) throw RpcError{2, "the scene has not been simulated"};
+      throw RpcError{kInvalidParams, "invalid params: no rendition " + std::to_string(id)};
+    if (!sampler_) throw RpcError{kNotSimulated, "the scene has not been simulated"};
     Rendition& r = it->second;
     if (fault_ == "garbage-on-frame") {
       const char junk[] = "\x00\x00\x00\x05{{{{{";
@@ -334,7 +338,7 @@ class Slave {
       return nullptr;
     }
     double t = params.at("t").get<double>();
-    if (!std::isfinite(t)) throw RpcError{-32602, "invalid params: t must be finite"};
+    if (!std::isfinite(t)) throw RpcError{kInvalidParams, "invalid params: t must be finite"};
     t = std::clamp(t, sampler_->t0(), sampler_->t1());
     const bool handles = params.value("handles", r.handles);
     const bool wire = params.value("wire", r.wire);
@@ -351,7 +355,8 @@ class Slave {
       image = render::RenderWire(f, overlays);
     } else {
       if (!r.renderer) r.renderer = std::make_unique<render::ShadedRenderer>(r.width, r.height);
-      if (!r.renderer->ok()) throw RpcError{3, "shaded rendering: " + r.renderer->error()};
+      if (!r.renderer->ok())
+        throw RpcError{kRenderError, "shaded rendering: " + r.renderer->error()};
       image = r.renderer->Render(*sampler_, f.poses, f.camera, sampler_->SceneLights());
       if (handles) render::OverlayImage(image, f, overlays);
     }
@@ -383,7 +388,8 @@ class Slave {
                             std::to_string(sampler_->t1())}};
     }
     if (line == "ping") return {{"reply", "pong"}};
-    throw RpcError{-32602, "unknown command '" + line + "' (known: handles on|off, info, ping)"};
+    throw RpcError{kInvalidParams,
+                   "unknown command '" + line + "' (known: handles on|off, info, ping)"};
   }
 
   int in_, out_;
@@ -392,7 +398,7 @@ class Slave {
   std::string fault_;
   std::string text_;
   std::unique_ptr<session::Session> session_;
-  const app::Run* run_ = nullptr;  // the session's last run
+  const pipeline::Run* run_ = nullptr;  // the session's last run
   std::unique_ptr<render::SceneSampler> sampler_;
   render::ViewState view_;
   std::map<int, Rendition> renditions_;

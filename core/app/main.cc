@@ -3,7 +3,12 @@
 //   asgard check FILE
 //   asgard simulate FILE [--until T] [--rtol R] [--atol A] [--out FILE.csv|FILE.json]
 //                        [--stats] [--method auto|dp5|tr|trbdf2] [--single] [--sequential]
+//                        [--no-collisions] [--quiet]
+//   asgard edit FILE --set ELEMENT.PARAM=VALUE ... [-o OUT] [--list]
+//   asgard render FILE ... -o OUT       (render_cmd.cc)
+//   asgard export FILE ... -o OUT       (render_cmd.cc)
 //
+// Each command evaluates the scene text once.
 // Exit status: 0 success, 1 scene errors or solver failure, 2 usage errors.
 #include <unistd.h>
 
@@ -18,14 +23,19 @@
 #include <string>
 #include <vector>
 
+#include "core/app/cli.h"
 #include "core/app/commands.h"
-#include "core/app/pipeline.h"
 #include "core/lang/lang.h"
+#include "core/pipeline/pipeline.h"
 #include "core/session/session.h"
 
 namespace {
 
-using asgard::app::Frames;
+using asgard::app::ParseNumber;
+using asgard::app::ReadFile;
+using asgard::app::TakeFile;
+using asgard::app::Usage;
+using asgard::pipeline::Frames;
 
 constexpr const char* kMainHelp = R"(asgard — physically-based 3D animation: simulate Asgard scene scripts
 
@@ -91,26 +101,6 @@ Options:
 Exit status 0 on success, 1 on scene errors or solver failure, 2 on bad usage.
 )";
 
-int Usage(const std::string& message, const char* help) {
-  std::cerr << "asgard: " << message << "\n\n" << help;
-  return 2;
-}
-
-bool ReadFile(const std::string& path, std::string& text) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) return false;
-  std::ostringstream ss;
-  ss << in.rdbuf();
-  text = ss.str();
-  return true;
-}
-
-bool ParseDouble(const std::string& s, double& out) {
-  char* end = nullptr;
-  out = std::strtod(s.c_str(), &end);
-  return !s.empty() && end && *end == '\0' && std::isfinite(out);
-}
-
 void PrintDiagnostics(const std::string& file, std::vector<asgard::scene::Diagnostic> ds) {
   // In source order (scene errors and equation errors are found in two passes).
   std::stable_sort(ds.begin(), ds.end(), [](const auto& a, const auto& b) {
@@ -144,7 +134,7 @@ class ProgressBar {
 constexpr const char* kFields[] = {"x",  "y",  "z",  "qw", "qx", "qy", "qz",
                                    "dx", "dy", "dz", "wx", "wy", "wz"};
 
-void BodyValues(const asgard::app::BodyFrame& f, double out[13]) {
+void BodyValues(const asgard::pipeline::BodyFrame& f, double out[13]) {
   for (int a = 0; a < 3; ++a) out[a] = f.p[a];
   for (int a = 0; a < 4; ++a) out[3 + a] = f.q[a];
   for (int a = 0; a < 3; ++a) out[7 + a] = f.v[a];
@@ -186,7 +176,7 @@ nlohmann::json CountersJson(const asgard::solver::Counters& c) {
 }
 
 bool WriteJson(const std::string& path, const std::string& scene_file, const Frames& frames,
-               const asgard::app::Run& run) {
+               const asgard::pipeline::Run& run) {
   nlohmann::json j;
   j["scene"] = scene_file;
   j["t0"] = run.equations->t0;
@@ -225,7 +215,7 @@ void PrintCounters(std::ostream& out, const asgard::solver::Counters& c) {
       << ", restarts " << c.restarts << "\n";
 }
 
-void PrintStats(const asgard::app::Run& run) {
+void PrintStats(const asgard::pipeline::Run& run) {
   const auto& sim = *run.simulation;
   const auto& eq = *run.equations;
   std::cout << "components: " << sim.component_count() << "\n";
@@ -284,21 +274,14 @@ int Edit(const std::vector<std::string>& args) {
       out_path = args[++i];
     } else if (a == "--list") {
       list = true;
-    } else if (!a.empty() && a[0] == '-') {
-      return Usage("edit: unknown option '" + a + "'", kEditHelp);
-    } else if (!file.empty()) {
-      return Usage("edit: only one FILE is accepted", kEditHelp);
-    } else {
-      file = a;
+    } else if (const int status = TakeFile("edit", a, file, kEditHelp); status >= 0) {
+      return status;
     }
   }
   if (file.empty()) return Usage("edit: FILE is required", kEditHelp);
   if (sets.empty() && !list) return Usage("edit: nothing to do (give --set or --list)", kEditHelp);
   std::string text;
-  if (!ReadFile(file, text)) {
-    std::cerr << "asgard: cannot read '" << file << "'\n";
-    return 1;
-  }
+  if (!ReadFile(file, text)) return 1;
   asgard::session::Session session(text);
   if (list) {
     for (const auto& p : session.Parameters())
@@ -317,7 +300,8 @@ int Edit(const std::vector<std::string>& args) {
     std::string tok;
     while (in >> tok) {
       double d;
-      if (!ParseDouble(tok, d)) return Usage("'" + tok + "' is not a number in '" + s + "'", kEditHelp);
+      if (!ParseNumber(tok, d))
+        return Usage("'" + tok + "' is not a number in '" + s + "'", kEditHelp);
       values.push_back(d);
     }
     if (values.empty()) return Usage("no value in '" + s + "'", kEditHelp);
@@ -357,17 +341,12 @@ int Check(const std::vector<std::string>& args) {
       std::cout << kCheckHelp;
       return 0;
     }
-    if (!a.empty() && a[0] == '-') return Usage("check: unknown option '" + a + "'", kCheckHelp);
-    if (!file.empty()) return Usage("check: only one FILE is accepted", kCheckHelp);
-    file = a;
+    if (const int status = TakeFile("check", a, file, kCheckHelp); status >= 0) return status;
   }
   if (file.empty()) return Usage("check: FILE is required", kCheckHelp);
   std::string text;
-  if (!ReadFile(file, text)) {
-    std::cerr << "asgard: cannot read '" << file << "'\n";
-    return 1;
-  }
-  auto run = asgard::app::Check(text);
+  if (!ReadFile(file, text)) return 1;
+  auto run = asgard::pipeline::Check(text);
   PrintDiagnostics(file, run.diagnostics);
   if (!run.ok) return 1;
   std::cout << file << ": ok (" << run.scene.bodies.size() << " bodies, "
@@ -378,7 +357,7 @@ int Check(const std::vector<std::string>& args) {
 int Simulate(const std::vector<std::string>& args) {
   std::string file, out_path;
   bool stats = false, quiet = false;
-  asgard::app::RunOptions opts;
+  asgard::pipeline::RunOptions opts;
   std::optional<double> rtol, atol;
   for (size_t i = 0; i < args.size(); ++i) {
     const std::string& a = args[i];
@@ -393,7 +372,7 @@ int Simulate(const std::vector<std::string>& args) {
     } else if (a == "--until" || a == "--rtol" || a == "--atol") {
       auto v = value(a.c_str());
       double d;
-      if (!v || !ParseDouble(*v, d)) return Usage(a + " needs a number", kSimulateHelp);
+      if (!v || !ParseNumber(*v, d)) return Usage(a + " needs a number", kSimulateHelp);
       if (a == "--until") opts.until = d;
       else if (d <= 0) return Usage(a + " must be positive", kSimulateHelp);
       else if (a == "--rtol") rtol = d;
@@ -421,45 +400,39 @@ int Simulate(const std::vector<std::string>& args) {
       opts.solver.partition = false;
     } else if (a == "--sequential") {
       opts.solver.schedule = asgard::solver::SolverOptions::Schedule::kSequential;
-    } else if (!a.empty() && a[0] == '-') {
-      return Usage("simulate: unknown option '" + a + "'", kSimulateHelp);
-    } else if (!file.empty()) {
-      return Usage("simulate: only one FILE is accepted", kSimulateHelp);
-    } else {
-      file = a;
+    } else if (const int status = TakeFile("simulate", a, file, kSimulateHelp); status >= 0) {
+      return status;
     }
   }
   if (file.empty()) return Usage("simulate: FILE is required", kSimulateHelp);
   std::string text;
-  if (!ReadFile(file, text)) {
-    std::cerr << "asgard: cannot read '" << file << "'\n";
+  if (!ReadFile(file, text)) return 1;
+  // The equations are formed (up to --until) before simulating, so that the
+  // progress bar knows the interval.
+  auto run = asgard::pipeline::Check(asgard::lang::Evaluate(text), opts);
+  if (!run.ok) {
+    PrintDiagnostics(file, run.diagnostics);
     return 1;
   }
-  // Command-line tolerances win over the scene's.
-  auto check = asgard::app::Check(text);
-  if (!check.ok) {
-    PrintDiagnostics(file, check.diagnostics);
-    return 1;
-  }
-  const double t0 = check.equations->t0;
-  const double t1 = opts.until.value_or(check.equations->t1);
+  const double t0 = run.equations->t0, t1 = run.equations->t1;
   if (!(t1 > t0)) {
     std::cerr << "asgard: --until must be after the start time " << t0 << "\n";
     return 2;
   }
   ProgressBar bar(t0, t1, isatty(STDERR_FILENO) && !quiet);
   opts.progress = [&bar](double t) { bar(t); };
+  // Command-line tolerances win over the scene's.
   if (rtol || atol) {
     opts.use_scene_tolerances = false;
     opts.solver.rtol = rtol.value_or(opts.solver.rtol);
     opts.solver.atol = atol.value_or(opts.solver.atol);
   }
-  auto run = asgard::app::Simulate(text, opts);
+  asgard::pipeline::Solve(run, opts);
   PrintDiagnostics(file, run.diagnostics);
   if (!run.solver_error.empty()) std::cerr << "asgard: " << file << ": " << run.solver_error << "\n";
   if (!run.ok) return 1;
-  const double rate = run.scene.simulator ? run.scene.simulator->frame_rate : 30.0;
-  const Frames frames = asgard::app::SampleFrames(*run.equations, *run.simulation, rate);
+  const Frames frames = asgard::pipeline::SampleFrames(*run.equations, *run.simulation,
+                                                       asgard::pipeline::FrameRate(run.scene));
   if (!out_path.empty()) {
     const bool ok = out_path.ends_with(".csv") ? WriteCsv(out_path, frames)
                                                : WriteJson(out_path, file, frames, run);

@@ -5,8 +5,9 @@
 //   asgard export FILE --format rayshade|povray|gltf [-t T] [view options] -o OUT
 //
 // Design: both commands simulate the whole scene first (the default view
-// frames every body over the whole animation), then sample poses at the
-// requested times through render::SceneSampler.  The output file's extension
+// frames the animation: render::SceneSampler::SceneBound), then sample poses
+// at the requested times through render::SceneSampler; a view element's
+// -follow or -trajectory (or --follow) moves the view centre per frame.  The output file's extension
 // chooses the writer.  Conventions follow `asgard simulate` (main.cc): usage
 // problems print the message and the help and exit 2; scene errors, solver
 // failures and write errors exit 1; a progress bar is shown on stderr for
@@ -23,13 +24,16 @@
 #include <string>
 #include <vector>
 
+#include "core/app/cli.h"
 #include "core/app/commands.h"
-#include "core/app/pipeline.h"
-#include "core/physics/trajectory.h"
 #include "core/lang/lang.h"
+#include "core/physics/trajectory.h"
+#include "core/pipeline/pipeline.h"
+#include "core/protocol/protocol.h"
 #include "core/render/sampler.h"
 #include "core/render/shaded.h"
 #include "core/render/wire.h"
+#include "formats/document/file.h"
 #include "formats/export/export.h"
 
 namespace asgard::app {
@@ -101,17 +105,6 @@ bad usage.
 
 namespace {
 
-int Usage(const std::string& message, const char* help) {
-  std::cerr << "asgard: " << message << "\n\n" << help;
-  return 2;
-}
-
-bool ParseNumber(const std::string& s, double& out) {
-  char* end = nullptr;
-  out = std::strtod(s.c_str(), &end);
-  return !s.empty() && end && *end == '\0' && std::isfinite(out);
-}
-
 // "a,b,c" (also "a b c" or "a:b:c" with the given separator).
 bool ParseList(const std::string& s, char sep, std::vector<double>& out) {
   out.clear();
@@ -130,15 +123,6 @@ bool ParseVec3(const std::string& s, Eigen::Vector3d& v) {
   if (!ParseList(s, ',', xs) || xs.size() != 3) return false;
   v = Eigen::Vector3d(xs[0], xs[1], xs[2]);
   return true;
-}
-
-std::string Extension(const std::string& path) {
-  const size_t dot = path.rfind('.');
-  const size_t slash = path.rfind('/');
-  if (dot == std::string::npos || (slash != std::string::npos && dot < slash)) return "";
-  std::string ext = path.substr(dot + 1);
-  for (char& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
-  return ext;
 }
 
 class FrameProgress {
@@ -211,9 +195,10 @@ int ParseCommon(const std::vector<std::string>& args, size_t& i, Common& c, std:
     auto v = value();
     int w = 0, h = 0;
     char extra = 0;
+    constexpr int kMax = protocol::kMaxRenditionSide;
     if (!v || std::sscanf(v->c_str(), "%dx%d%c", &w, &h, &extra) != 2 || w < 1 || h < 1 ||
-        w > 8192 || h > 8192)
-      return fail("--size needs WxH, e.g. 640x480 (at most 8192 each way)");
+        w > kMax || h > kMax)
+      return fail("--size needs WxH, e.g. 640x480 (at most " + std::to_string(kMax) + " each way)");
     c.width = w, c.height = h;
   } else if (a == "--view") {
     auto v = value();
@@ -247,7 +232,7 @@ int ParseCommon(const std::vector<std::string>& args, size_t& i, Common& c, std:
 
 // Everything after argument parsing: the simulated run and its sampler.
 struct Loaded {
-  Run run;
+  pipeline::Run run;
   std::unique_ptr<render::SceneSampler> sampler;
   render::ViewState view;
   std::vector<double> times;
@@ -263,24 +248,36 @@ struct Loaded {
   }
 };
 
+// Handles args[i] when it is -h/--help or an option both commands take.
+// Returns an exit status (0 after the help, 2 after a usage error), or
+// kConsumed, or kOwnOption when the command must look at args[i] itself.
+constexpr int kConsumed = -1, kOwnOption = -2;
+int TakeShared(const std::vector<std::string>& args, size_t& i, Common& c,
+               const std::string& command, const char* help) {
+  if (args[i] == "-h" || args[i] == "--help") {
+    std::cout << help;
+    return 0;
+  }
+  std::string message;
+  const int r = ParseCommon(args, i, c, message);
+  if (r < 0) return Usage(command + ": " + message, help);
+  return r > 0 ? kConsumed : kOwnOption;
+}
+
 // Simulates and prepares the view and times.  Returns an exit status, or -1
 // to continue.
 int Load(const Common& c, const char* help, bool movie, Loaded& l) {
-  std::ifstream in(c.file, std::ios::binary);
-  if (!in) {
-    std::cerr << "asgard: cannot read '" << c.file << "'\n";
-    return 1;
-  }
-  std::ostringstream text;
-  text << in.rdbuf();
-  RunOptions opts;
+  std::string text;
+  if (!ReadFile(c.file, text)) return 1;
+  pipeline::RunOptions opts;
   opts.until = c.until;
-  l.run = Simulate(text.str(), opts);
+  l.run = pipeline::Simulate(text, opts);
   for (const auto& d : l.run.diagnostics) std::cerr << lang::FormatDiagnostic(c.file, d) << "\n";
   if (!l.run.solver_error.empty())
     std::cerr << "asgard: " << c.file << ": " << l.run.solver_error << "\n";
   if (!l.run.ok) return 1;
-  l.sampler = std::make_unique<render::SceneSampler>(l.run);
+  l.sampler =
+      std::make_unique<render::SceneSampler>(l.run.scene, *l.run.equations, *l.run.simulation);
   for (const auto& name : l.sampler->unknown_colors())
     std::cerr << "asgard: " << c.file << ": warning: unknown colour '" << name
               << "' (a palette colour is used)\n";
@@ -375,15 +372,11 @@ int RenderCommand(const std::vector<std::string>& args) {
   int aa = 2;
   std::optional<double> fps;
   for (size_t i = 0; i < args.size(); ++i) {
-    const std::string& a = args[i];
-    if (a == "-h" || a == "--help") {
-      std::cout << kRenderHelp;
-      return 0;
+    if (const int r = TakeShared(args, i, c, "render", kRenderHelp); r != kOwnOption) {
+      if (r == kConsumed) continue;
+      return r;
     }
-    std::string message;
-    const int r = ParseCommon(args, i, c, message);
-    if (r < 0) return Usage("render: " + message, kRenderHelp);
-    if (r > 0) continue;
+    const std::string& a = args[i];
     const bool has_value = i + 1 < args.size();
     if (a == "--style") {
       if (!has_value || (args[i + 1] != "wire" && args[i + 1] != "shaded"))
@@ -408,7 +401,7 @@ int RenderCommand(const std::vector<std::string>& args) {
   }
   if (c.file.empty()) return Usage("render: FILE is required", kRenderHelp);
   if (c.out.empty()) return Usage("render: -o OUT is required", kRenderHelp);
-  const std::string ext = Extension(c.out);
+  const std::string ext = document::Extension(c.out);
   const bool movie = formats::MovieWriter::IsMovie(c.out);
   const bool vector = ext == "svg" || ext == "pdf" || ext == "ps";
   if (!movie && !vector && ext != "png" && ext != "ppm")
@@ -519,15 +512,11 @@ int ExportCommand(const std::vector<std::string>& args) {
   Common c;
   std::string format;
   for (size_t i = 0; i < args.size(); ++i) {
-    const std::string& a = args[i];
-    if (a == "-h" || a == "--help") {
-      std::cout << kExportHelp;
-      return 0;
+    if (const int r = TakeShared(args, i, c, "export", kExportHelp); r != kOwnOption) {
+      if (r == kConsumed) continue;
+      return r;
     }
-    std::string message;
-    const int r = ParseCommon(args, i, c, message);
-    if (r < 0) return Usage("export: " + message, kExportHelp);
-    if (r > 0) continue;
+    const std::string& a = args[i];
     if (a == "--format") {
       if (i + 1 >= args.size()) return Usage("export: --format needs a value", kExportHelp);
       format = args[++i];
@@ -540,7 +529,7 @@ int ExportCommand(const std::vector<std::string>& args) {
   if (c.file.empty()) return Usage("export: FILE is required", kExportHelp);
   if (c.out.empty()) return Usage("export: -o OUT is required", kExportHelp);
   if (format.empty()) {
-    const std::string ext = Extension(c.out);
+    const std::string ext = document::Extension(c.out);
     format = ext == "ray" ? "rayshade" : ext == "pov" ? "povray" : ext == "glb" ? "gltf" : "";
     if (format.empty())
       return Usage(

@@ -13,13 +13,13 @@ namespace asgard::render {
 Mesh PieceMesh(const Piece& piece, int slices) {
   Mesh m;
   if (!piece.sphere) {
-    for (size_t f = 0; f < piece.faces.size(); ++f) {
-      const auto& face = piece.faces[f];
+    for (const auto& hull_face : piece.hull.faces) {
+      const auto& face = hull_face.vertices;
       if (face.size() < 3) continue;
       const uint32_t base = static_cast<uint32_t>(m.positions.size());
       for (int v : face) {
-        m.positions.push_back(piece.vertices[v].cast<float>());
-        m.normals.push_back(piece.normals[f].cast<float>());
+        m.positions.push_back(piece.hull.vertices[v].cast<float>());
+        m.normals.push_back(hull_face.normal.cast<float>());
       }
       for (uint32_t k = 1; k + 1 < face.size(); ++k) {
         m.indices.push_back(base);

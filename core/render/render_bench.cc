@@ -37,12 +37,12 @@ for {set i 0} {$i < 1000} {incr i} {
 }
 
 void RenderFrames(benchmark::State& state, const std::string& text) {
-  app::Run run = app::Simulate(text);
+  pipeline::Run run = pipeline::Simulate(text);
   if (!run.ok) {
     state.SkipWithError("simulation failed");
     return;
   }
-  render::SceneSampler sampler(run);
+  render::SceneSampler sampler(run.scene, *run.equations, *run.simulation);
   const render::ViewState view = *sampler.SceneView();
   const render::Camera camera = render::MakeCamera(view, 640, 480);
   render::ShadedRenderer renderer(640, 480);

@@ -2,7 +2,7 @@
 //
 // Design: geometry comes from the equation system's BodyModels (already in
 // body coordinates, hulls computed once by physics), so a renderer only ever
-// applies a rigid transform per body.  Poses come from app::SampleBody.
+// applies a rigid transform per body.  Poses come from pipeline::SampleBody.
 // Overlay values that depend on expressions (link end points given as
 // expressions, force vectors) are evaluated with the expression module: the
 // texts are parsed once against a small name table (body state, mass and
@@ -50,7 +50,7 @@ const std::map<std::string, int, std::less<>>& SlotNames() {
   return names;
 }
 
-Pose ToPose(const app::BodyFrame& f) {
+Pose ToPose(const pipeline::BodyFrame& f) {
   Pose p;
   p.p = Eigen::Vector3d(f.p[0], f.p[1], f.p[2]);
   p.q = Eigen::Quaterniond(f.q[0], f.q[1], f.q[2], f.q[3]).normalized();
@@ -124,9 +124,14 @@ struct SceneSampler::Evaluator {
   }
 };
 
-SceneSampler::SceneSampler(const app::Run& run) : run_(run), eval_(std::make_unique<Evaluator>()) {
-  if (run.scene.simulator) frame_rate_ = run.scene.simulator->frame_rate;
-  const auto& eq = *run.equations;
+SceneSampler::SceneSampler(const scene::Scene& scene, const physics::EquationSystem& equations,
+                           const solver::Simulation& simulation)
+    : scene_(scene),
+      equations_(equations),
+      simulation_(simulation),
+      frame_rate_(pipeline::FrameRate(scene)),
+      eval_(std::make_unique<Evaluator>()) {
+  const auto& eq = equations_;
   for (size_t b = 0; b < eq.bodies.size(); ++b) {
     const auto& m = eq.bodies[b];
     BodyShape shape;
@@ -145,13 +150,8 @@ SceneSampler::SceneSampler(const app::Run& run) : run_(run), eval_(std::make_uni
       p.center = bp.center;
       p.radius = bp.radius;
       if (!p.sphere) {
-        p.vertices = bp.hull.vertices;
-        p.triangles = bp.hull.triangles;
-        for (const auto& f : bp.hull.faces) {
-          p.faces.push_back(f.vertices);
-          p.normals.push_back(f.normal);
-        }
-        for (const auto& v : p.vertices) lo = lo.cwiseMin(v), hi = hi.cwiseMax(v);
+        p.hull = bp.hull;
+        for (const auto& v : p.hull.vertices) lo = lo.cwiseMin(v), hi = hi.cwiseMax(v);
       } else {
         lo = lo.cwiseMin((p.center.array() - p.radius).matrix());
         hi = hi.cwiseMax((p.center.array() + p.radius).matrix());
@@ -170,7 +170,7 @@ SceneSampler::SceneSampler(const app::Run& run) : run_(run), eval_(std::make_uni
         if (p.sphere)
           shape.bound_radius =
               std::max(shape.bound_radius, (p.center - shape.bound_center).norm() + p.radius);
-        for (const auto& v : p.vertices)
+        for (const auto& v : p.hull.vertices)
           shape.bound_radius = std::max(shape.bound_radius, (v - shape.bound_center).norm());
       }
     }
@@ -178,15 +178,15 @@ SceneSampler::SceneSampler(const app::Run& run) : run_(run), eval_(std::make_uni
   }
   // Overlay expressions.
   Evaluator& ev = *eval_;
-  for (const auto& tr : run.scene.trajectories) {
+  for (const auto& tr : scene_.trajectories) {
     if (tr.knots.empty()) continue;
     ev.curve_index[tr.name] = static_cast<int>(ev.curves.size());
     ev.curves.emplace_back(tr.knots);
   }
-  for (const auto& link : run.scene.links)
+  for (const auto& link : scene_.links)
     ev.link_first.push_back(
         link.body2.empty() && link.trajectory.empty() ? ev.AddTriple(link.point, eq, 1.0) : -1);
-  for (const auto& f : run.scene.forces) {
+  for (const auto& f : scene_.forces) {
     const int b = eq.FindBody(f.body);
     const double factor = f.gravitational && b >= 0 ? eq.bodies[b].mass : 1.0;
     ev.force_first.push_back(b >= 0 ? ev.AddTriple(f.components, eq, factor) : -1);
@@ -199,26 +199,19 @@ SceneSampler::SceneSampler(const app::Run& run) : run_(run), eval_(std::make_uni
 
 SceneSampler::~SceneSampler() = default;
 
-double SceneSampler::t0() const { return run_.equations->t0; }
-double SceneSampler::t1() const { return run_.equations->t1; }
+double SceneSampler::t0() const { return equations_.t0; }
+double SceneSampler::t1() const { return equations_.t1; }
 
 std::vector<Pose> SceneSampler::Poses(double t) const {
   std::vector<Pose> poses;
   poses.reserve(bodies_.size());
   for (size_t b = 0; b < bodies_.size(); ++b)
-    poses.push_back(
-        ToPose(app::SampleBody(*run_.equations, *run_.simulation, static_cast<int>(b), t)));
+    poses.push_back(ToPose(pipeline::SampleBody(equations_, simulation_, static_cast<int>(b), t)));
   return poses;
 }
 
 std::vector<double> SceneSampler::FrameTimes() const {
-  const double span = t1() - t0();
-  const long count = std::max(1L, std::lround(std::floor(span * frame_rate_ + 1e-9))) + 1;
-  std::vector<double> times;
-  for (long k = 0; k < count; ++k)
-    times.push_back(k + 1 == count ? t1()
-                                   : std::min(t1(), t0() + static_cast<double>(k) / frame_rate_));
-  return times;
+  return pipeline::FrameTimes(t0(), t1(), frame_rate_);
 }
 
 std::vector<double> SceneSampler::FrameTimes(double start, double end, int count) {
@@ -228,29 +221,36 @@ std::vector<double> SceneSampler::FrameTimes(double start, double end, int count
   return times;
 }
 
+namespace {
+
+struct Ball {
+  Eigen::Vector3d c;
+  double r;
+};
+
+// The sphere centred on the smallest box around `balls` that holds them all.
+Bound Fit(const std::vector<Ball>& balls) {
+  Bound bound;
+  Eigen::Vector3d lo = Eigen::Vector3d::Constant(1e300), hi = -lo;
+  for (const auto& s : balls) {
+    lo = lo.cwiseMin((s.c.array() - s.r).matrix());
+    hi = hi.cwiseMax((s.c.array() + s.r).matrix());
+  }
+  bound.center = (lo + hi) / 2;
+  bound.radius = 0;
+  for (const auto& s : balls)
+    bound.radius = std::max(bound.radius, (s.c - bound.center).norm() + s.r);
+  return bound;
+}
+
+}  // namespace
+
 Bound SceneSampler::SceneBound() const {
   if (bound_) return *bound_;
-  struct Ball {
-    Eigen::Vector3d c;
-    double r;
-  };
   // Frame the scene as it starts, then widen to take in each body's motion
   // until it first strays beyond twice that framing radius: a ball launched
   // far away leaves the picture instead of shrinking everything else to a
   // speck.  A scene of one body keeps its whole path in view.
-  auto fit = [](const std::vector<Ball>& balls) {
-    Bound bound;
-    Eigen::Vector3d lo = Eigen::Vector3d::Constant(1e300), hi = -lo;
-    for (const auto& s : balls) {
-      lo = lo.cwiseMin((s.c.array() - s.r).matrix());
-      hi = hi.cwiseMax((s.c.array() + s.r).matrix());
-    }
-    bound.center = (lo + hi) / 2;
-    bound.radius = 0;
-    for (const auto& s : balls)
-      bound.radius = std::max(bound.radius, (s.c - bound.center).norm() + s.r);
-    return bound;
-  };
   const std::vector<double> times = FrameTimes();
   std::vector<std::vector<Ball>> path(bodies_.size());
   for (double t : times) {
@@ -267,7 +267,7 @@ Bound SceneSampler::SceneBound() const {
       ++moving;
     }
   if (!balls.empty() && moving > 1) {
-    const Bound start = fit(balls);
+    const Bound start = Fit(balls);
     for (const auto& p : path)
       for (const Ball& s : p) {
         if ((s.c - start.center).norm() + s.r > 2 * start.radius) break;
@@ -278,15 +278,7 @@ Bound SceneSampler::SceneBound() const {
   }
   Bound bound;
   if (!balls.empty()) {
-    Eigen::Vector3d lo = Eigen::Vector3d::Constant(1e300), hi = -lo;
-    for (const auto& s : balls) {
-      lo = lo.cwiseMin((s.c.array() - s.r).matrix());
-      hi = hi.cwiseMax((s.c.array() + s.r).matrix());
-    }
-    bound.center = (lo + hi) / 2;
-    bound.radius = 0;
-    for (const auto& s : balls)
-      bound.radius = std::max(bound.radius, (s.c - bound.center).norm() + s.r);
+    bound = Fit(balls);
     if (!(bound.radius > 0) || !std::isfinite(bound.radius)) bound.radius = 1;
   }
   bound_ = bound;
@@ -300,7 +292,7 @@ std::optional<ViewState> SceneSampler::SceneView(const std::string& name) const 
   v.center = b.center;
   v.radius = b.radius;
   const scene::View* chosen = nullptr;
-  for (const auto& e : run_.scene.views)
+  for (const auto& e : scene_.views)
     if (name.empty() || e.name == name) chosen = &e;
   if (!name.empty() && !chosen) return std::nullopt;
   if (chosen) {
@@ -317,7 +309,7 @@ std::optional<ViewState> SceneSampler::SceneView(const std::string& name) const 
 
 std::vector<Light> SceneSampler::SceneLights() const {
   std::vector<Light> lights;
-  for (const auto& s : run_.scene.lights) {
+  for (const auto& s : scene_.lights) {
     Light l;
     l.directional = s.type == scene::LightSource::Type::kDirectional;
     l.position = ToVec(s.position);
@@ -333,10 +325,11 @@ std::vector<Light> SceneSampler::SceneLights() const {
 namespace {
 
 // Fills the evaluator's value array from the poses (and velocities) at t.
-std::vector<double> StateValues(const app::Run& run, double t, size_t nbodies) {
+std::vector<double> StateValues(const physics::EquationSystem& eq, const solver::Simulation& sim,
+                                double t, size_t nbodies) {
   std::vector<double> x(nbodies * kSlots, 0.0);
   for (size_t b = 0; b < nbodies; ++b) {
-    const auto f = app::SampleBody(*run.equations, *run.simulation, static_cast<int>(b), t);
+    const auto f = pipeline::SampleBody(eq, sim, static_cast<int>(b), t);
     double* s = &x[b * kSlots];
     for (int a = 0; a < 3; ++a) s[kPx + a] = f.p[a], s[kVx + a] = f.v[a], s[kWx + a] = f.w[a];
     for (int a = 0; a < 4; ++a) s[kQw + a] = f.q[a];
@@ -350,16 +343,16 @@ std::vector<double> StateValues(const app::Run& run, double t, size_t nbodies) {
 }  // namespace
 
 std::vector<Segment> SceneSampler::LinkSegments(double t, const std::vector<Pose>& poses) const {
-  const auto& eq = *run_.equations;
+  const auto& eq = equations_;
   std::vector<double> out;
   if (eval_->tape) {
-    const auto x = StateValues(run_, t, bodies_.size());
+    const auto x = StateValues(equations_, simulation_, t, bodies_.size());
     out.resize(eval_->outputs.size());
     eval_->tape->Evaluate(t, x.data(), out.data(), &eval_->externs);
   }
   std::vector<Segment> segs;
-  for (size_t i = 0; i < run_.scene.links.size(); ++i) {
-    const auto& link = run_.scene.links[i];
+  for (size_t i = 0; i < scene_.links.size(); ++i) {
+    const auto& link = scene_.links[i];
     const int b1 = eq.FindBody(link.body1);
     if (b1 < 0) continue;
     Segment s;
@@ -383,14 +376,14 @@ std::vector<Segment> SceneSampler::LinkSegments(double t, const std::vector<Pose
 }
 
 std::vector<Segment> SceneSampler::ForceVectors(double t, const std::vector<Pose>& poses) const {
-  const auto& eq = *run_.equations;
+  const auto& eq = equations_;
   std::vector<Segment> segs;
   if (!eval_->tape) return segs;
-  const auto x = StateValues(run_, t, bodies_.size());
+  const auto x = StateValues(equations_, simulation_, t, bodies_.size());
   std::vector<double> out(eval_->outputs.size());
   eval_->tape->Evaluate(t, x.data(), out.data(), &eval_->externs);
-  for (size_t i = 0; i < run_.scene.forces.size(); ++i) {
-    const auto& f = run_.scene.forces[i];
+  for (size_t i = 0; i < scene_.forces.size(); ++i) {
+    const auto& f = scene_.forces[i];
     const int b = eq.FindBody(f.body);
     const int first = eval_->force_first[i];
     if (b < 0 || first < 0) continue;
@@ -410,7 +403,7 @@ std::vector<std::vector<Eigen::Vector3d>> SceneSampler::Paths(
     if (bodies_[b].is_static) continue;
     std::vector<Eigen::Vector3d> path;
     for (double t : times) {
-      const auto f = app::SampleBody(*run_.equations, *run_.simulation, static_cast<int>(b), t);
+      const auto f = pipeline::SampleBody(equations_, simulation_, static_cast<int>(b), t);
       path.emplace_back(f.p[0], f.p[1], f.p[2]);
     }
     paths.push_back(std::move(path));

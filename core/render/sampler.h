@@ -1,12 +1,12 @@
 // Scene sampling for rendering and export (seed 4.1.9).
 //
-// A SceneSampler wraps a finished simulation run and answers what every
-// output needs: each body's geometry in body coordinates (origin at the centre
-// of mass, shape axes), its pose at any time t (app::SampleBody: the Hermite
-// interpolant of the integrator's own samples, so playback matches what was
-// integrated), the frame times, the default view that frames the whole
-// animation, the lights, and overlay geometry (link springs, force vectors,
-// body paths).
+// A SceneSampler reads a scene, its equations and their finished simulation
+// and answers what every output needs: each body's geometry in body
+// coordinates (origin at the centre of mass, shape axes), its pose at any time
+// t (pipeline::SampleBody: the Hermite interpolant of the integrator's own
+// samples, so playback matches what was integrated), the frame times, the
+// default framing view (SceneBound), the lights, and overlay geometry (link
+// springs, force vectors, body paths).
 #pragma once
 
 #include <Eigen/Dense>
@@ -16,21 +16,20 @@
 #include <string>
 #include <vector>
 
-#include "core/app/pipeline.h"
+#include "core/geometry/geometry.h"
+#include "core/pipeline/pipeline.h"
 #include "core/render/color.h"
 #include "core/render/view.h"
 
 namespace asgard::render {
 
-// One convex piece in body coordinates.
+// One convex piece in body coordinates: a sphere, or the hull physics
+// computed (vertices, CCW triangles, merged faces with outward normals).
 struct Piece {
   bool sphere = false;
   Eigen::Vector3d center = Eigen::Vector3d::Zero();  // sphere
   double radius = 0.0;                               // sphere
-  std::vector<Eigen::Vector3d> vertices;             // hull
-  std::vector<std::vector<int>> faces;               // hull polygons, CCW from outside
-  std::vector<Eigen::Vector3d> normals;              // per face, outward
-  std::vector<std::array<int, 3>> triangles;         // hull triangulation
+  geometry::ConvexHull hull;                         // when not a sphere
   Rgb color;
 };
 
@@ -63,8 +62,10 @@ struct Bound {
 
 class SceneSampler {
  public:
-  // `run` must be ok (simulated) and outlive the sampler.
-  explicit SceneSampler(const app::Run& run);
+  // The simulation must have run to its end; all three must outlive the
+  // sampler.
+  SceneSampler(const scene::Scene& scene, const physics::EquationSystem& equations,
+               const solver::Simulation& simulation);
   ~SceneSampler();
   SceneSampler(const SceneSampler&) = delete;
   SceneSampler& operator=(const SceneSampler&) = delete;
@@ -78,14 +79,14 @@ class SceneSampler {
 
   std::vector<Pose> Poses(double t) const;
   // The scene's frame times (simulator -frames per second, t0..t1 inclusive,
-  // the last frame at t1), as app::SampleFrames.
+  // the last frame at t1), as pipeline::SampleFrames.
   std::vector<double> FrameTimes() const;
   // `count` frames evenly spaced over [start, end] (count 1: start).
   static std::vector<double> FrameTimes(double start, double end, int count);
 
   // Sphere (centred on the smallest box) holding every body's bounding sphere
   // at the start, and along its path until it first strays beyond twice that
-  // radius (all of the path when the scene has one body).
+  // radius (all of the paths when fewer than two bodies have geometry).
   Bound SceneBound() const;
   // The framing view (DefaultTilt, centre and radius of SceneBound), with the
   // options of the scene's last `view` element (or the one named `name`)
@@ -105,8 +106,10 @@ class SceneSampler {
 
  private:
   struct Evaluator;
-  const app::Run& run_;
-  double frame_rate_ = 30.0;
+  const scene::Scene& scene_;
+  const physics::EquationSystem& equations_;
+  const solver::Simulation& simulation_;
+  double frame_rate_;
   std::vector<BodyShape> bodies_;
   std::vector<std::string> unknown_colors_;
   std::unique_ptr<Evaluator> eval_;

@@ -93,14 +93,14 @@ void DrawBodies(cairo_t* cr, const FrameInput& f, double lw) {
         continue;
       }
       std::set<std::pair<int, int>> edges;
-      for (const auto& face : piece.faces)
-        for (size_t k = 0; k < face.size(); ++k) {
-          const int a = face[k], c = face[(k + 1) % face.size()];
+      for (const auto& face : piece.hull.faces)
+        for (size_t k = 0, n = face.vertices.size(); k < n; ++k) {
+          const int a = face.vertices[k], c = face.vertices[(k + 1) % n];
           edges.insert({std::min(a, c), std::max(a, c)});
         }
       std::vector<Eigen::Vector3d> world;
-      world.reserve(piece.vertices.size());
-      for (const auto& v : piece.vertices) world.push_back(pose.Apply(v));
+      world.reserve(piece.hull.vertices.size());
+      for (const auto& v : piece.hull.vertices) world.push_back(pose.Apply(v));
       for (const auto& [a, c] : edges) AddSegment(cr, f.camera, world[a], world[c]);
       cairo_stroke(cr);
     }

@@ -25,6 +25,8 @@
 #include <string>
 #include <vector>
 
+#include "core/protocol/protocol.h"
+
 namespace asgard::scene {
 
 using Vec3 = std::array<double, 3>;
@@ -100,7 +102,7 @@ struct Simulator : ElementBase {
   std::optional<double> rtol;
   std::optional<double> atol;
   bool collisions = true;
-  double frame_rate = 30.0;  // output sampling for trajectories and movies
+  double frame_rate = protocol::kDefaultFrameRate;  // output sampling for trajectories and movies
 };
 
 // One convex piece of a shape set, in shape coordinates.

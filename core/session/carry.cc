@@ -89,10 +89,10 @@ class Matcher {
 }  // namespace
 
 void Session::CarryOverRun(const std::function<void(double)>& progress) {
-  std::unique_ptr<app::Run> old = std::move(run_);
-  app::RunOptions opts = options_;
+  std::unique_ptr<pipeline::Run> old = std::move(run_);
+  pipeline::RunOptions opts = options_;
   opts.prepare_only = true;
-  run_ = std::make_unique<app::Run>(app::Simulate(text_, opts));
+  run_ = std::make_unique<pipeline::Run>(pipeline::Simulate(scene_, opts));
   stats_.rebuilt = true;
   if (!run_->simulation) return;
   auto& sim = *run_->simulation;

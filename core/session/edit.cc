@@ -54,6 +54,14 @@ std::vector<std::string> Words(scene::ElementKind kind, const std::string& param
   return {param};
 }
 
+// The element addressed as `element`, or null with the error in `result`.
+const ElementRef* FindOrReport(const std::vector<ElementRef>& elements, const std::string& element,
+                               EditResult& result) {
+  const ElementRef* e = Find(elements, element);
+  if (!e) result.error = "no element '" + element + "'";
+  return e;
+}
+
 }  // namespace
 
 void Locate(TextEdit& edit, const std::string& text) {
@@ -95,11 +103,8 @@ EditResult Session::SetParameter(const std::string& element, const std::string& 
                                  const std::vector<double>& values) {
   EditResult result;
   const auto elements = Elements(scene_);
-  const ElementRef* e = Find(elements, element);
-  if (!e) {
-    result.error = "no element '" + element + "'";
-    return result;
-  }
+  const ElementRef* e = FindOrReport(elements, element, result);
+  if (!e) return result;
   for (double v : values)
     if (!std::isfinite(v)) {
       result.error = "values must be finite numbers";
@@ -188,11 +193,8 @@ EditResult Session::CreateElement(const std::string& command) {
 EditResult Session::DeleteElement(const std::string& element) {
   EditResult result;
   const auto elements = Elements(scene_);
-  const ElementRef* e = Find(elements, element);
-  if (!e) {
-    result.error = "no element '" + element + "'";
-    return result;
-  }
+  const ElementRef* e = FindOrReport(elements, element, result);
+  if (!e) return result;
   const std::string reason = ReadOnlyReason(*e->base, nullptr);
   if (!reason.empty()) {
     result.error = element + " cannot be deleted here: " + reason;

@@ -27,7 +27,7 @@ bool AffectsMotion(scene::ElementKind kind) {
 
 }  // namespace
 
-Session::Session(std::string text, app::RunOptions options) : options_(std::move(options)) {
+Session::Session(std::string text, pipeline::RunOptions options) : options_(std::move(options)) {
   options_.allow_scene_errors = true;
   text_ = std::move(text);
   scene_ = lang::Evaluate(text_);
@@ -100,9 +100,9 @@ std::vector<ElementChange> Session::Adopt(const std::string& text, bool record) 
 }
 
 void Session::FullRun(const std::function<void(double)>& progress) {
-  app::RunOptions opts = options_;
+  pipeline::RunOptions opts = options_;
   opts.progress = progress;
-  run_ = std::make_unique<app::Run>(app::Simulate(text_, opts));
+  run_ = std::make_unique<pipeline::Run>(pipeline::Simulate(scene_, opts));
   stats_.rebuilt = true;
   stats_.components = run_->simulation ? run_->simulation->component_count() : 0;
   stats_.components_reset = stats_.components;

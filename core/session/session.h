@@ -34,7 +34,7 @@
 #include <string>
 #include <vector>
 
-#include "core/app/pipeline.h"
+#include "core/pipeline/pipeline.h"
 #include "core/scene/scene.h"
 
 namespace asgard::session {
@@ -95,7 +95,7 @@ struct EditResult {
 
 class Session {
  public:
-  explicit Session(std::string text, app::RunOptions options = {});
+  explicit Session(std::string text, pipeline::RunOptions options = {});
   ~Session();
 
   const std::string& text() const { return text_; }
@@ -118,7 +118,7 @@ class Session {
 
   // Simulates incrementally (see above).  False when the solver fails.
   bool Simulate(const std::function<void(double)>& progress = {});
-  const app::Run* run() const { return run_.get(); }
+  const pipeline::Run* run() const { return run_.get(); }
   const SimulateStats& last_stats() const { return stats_; }
 
   bool Undo();
@@ -139,8 +139,8 @@ class Session {
 
   std::string text_;
   scene::Scene scene_;
-  app::RunOptions options_;
-  std::unique_ptr<app::Run> run_;
+  pipeline::RunOptions options_;
+  std::unique_ptr<pipeline::Run> run_;
   // Bodies whose initial state changed since the last simulation, and
   // whether anything else changed.
   std::vector<std::string> dirty_bodies_;

@@ -22,12 +22,15 @@ namespace {
 
 constexpr char kAlphabet[] = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
 
-std::string Lower(std::string s) {
-  for (char& c : s) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
-  return s;
-}
-
 }  // namespace
+
+std::string Extension(std::string_view path) {
+  const size_t dot = path.rfind('.'), slash = path.rfind('/');
+  if (dot == std::string_view::npos || (slash != std::string_view::npos && dot < slash)) return "";
+  std::string ext(path.substr(dot + 1));
+  for (char& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  return ext;
+}
 
 bool ReadFile(const std::string& path, std::string& bytes, std::string* error) {
   std::ifstream in(path, std::ios::binary);
@@ -92,8 +95,7 @@ bool WriteFileAtomic(const std::string& path, std::string_view bytes, std::strin
 }
 
 Flavour FlavourForPath(const std::string& path) {
-  const std::string p = Lower(path);
-  return p.size() >= 4 && p.compare(p.size() - 4, 4, ".xml") == 0 ? Flavour::kXml : Flavour::kSgml;
+  return Extension(path) == "xml" ? Flavour::kXml : Flavour::kSgml;
 }
 
 LoadResult LoadDocument(const std::string& path) {

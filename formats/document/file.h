@@ -17,6 +17,10 @@ namespace asgard::document {
 enum class Flavour { kSgml, kXml };
 
 bool ReadFile(const std::string& path, std::string& bytes, std::string* error);
+
+// The extension of a file name, lower case, without the dot ("" when the last
+// path component has none): what chooses an output format everywhere.
+std::string Extension(std::string_view path);
 bool WriteFileAtomic(const std::string& path, std::string_view bytes, std::string* error);
 
 // Reads a document file; the flavour is chosen by the content (an XML

@@ -16,24 +16,14 @@
 #include <fstream>
 #include <sstream>
 
+#include "formats/document/file.h"
 #include "formats/export/export.h"
 
 extern char** environ;
 
 namespace asgard::formats {
 
-namespace {
-
-std::string Extension(const std::string& path) {
-  const size_t dot = path.rfind('.');
-  const size_t slash = path.rfind('/');
-  if (dot == std::string::npos || (slash != std::string::npos && dot < slash)) return "";
-  std::string ext = path.substr(dot + 1);
-  for (char& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
-  return ext;
-}
-
-}  // namespace
+using document::Extension;
 
 bool MovieWriter::IsMovie(const std::string& path) {
   const std::string ext = Extension(path);

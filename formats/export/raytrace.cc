@@ -96,9 +96,9 @@ bool WriteRayshade(const std::string& path, const StillScene& s, std::string* er
           << "\n";
         continue;
       }
-      for (const auto& face : p.faces) {
+      for (const auto& face : p.hull.faces) {
         o << "poly " << surf;
-        for (int v : face) o << "  " << Triple(poses[b].Apply(p.vertices[v]));
+        for (int v : face.vertices) o << "  " << Triple(poses[b].Apply(p.hull.vertices[v]));
         o << "\n";
       }
     }
@@ -148,10 +148,10 @@ bool WritePovray(const std::string& path, const StillScene& s, std::string* erro
         continue;
       }
       o << "mesh {\n";
-      for (const auto& t : p.triangles) {
+      for (const auto& t : p.hull.triangles) {
         o << "  triangle {";
         for (int k = 0; k < 3; ++k)
-          o << (k ? ", <" : " <") << Triple(poses[b].Apply(p.vertices[t[k]]), ", ") << ">";
+          o << (k ? ", <" : " <") << Triple(poses[b].Apply(p.hull.vertices[t[k]]), ", ") << ">";
         o << " }\n";
       }
       o << "  " << tex << "\n}\n";

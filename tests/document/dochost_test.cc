@@ -1,6 +1,7 @@
 // The dochost command line: exit codes, conversions between flavours, the
 // PDF of the memo rasterised with pdftoppm (text and a non-empty animation
-// frame), recompute with a refreshed poster, and a crashed slave in a page.
+// frame), recompute with a refreshed poster, restart leaving the document
+// alone, and a crashed slave in a page.
 #include <gtest/gtest.h>
 #include <sys/wait.h>
 
@@ -144,6 +145,24 @@ TEST(Dochost, RecomputeRefreshesThePosterAndAKilledSlaveStillGivesAPage) {
   ASSERT_TRUE(img);
   EXPECT_GT(Measure(*img, 120, 120, 475, 355).distinct, 20) << "the poster is drawn";
   EXPECT_EQ(Read(dir / "memo.ens"), with) << "the document is untouched";
+}
+
+TEST(Dochost, RestartOnlyRestartsTheSlaveAndLeavesTheDocumentAlone) {
+  const fs::path dir = Scratch("restart");
+  const std::string doc = (dir / "memo.ens").string();
+  fs::copy_file(kSamples + "memo.ens", doc);
+  const std::string before = Read(doc);
+  const auto written = fs::last_write_time(doc);
+  const Result r = Exec(kDochost + " verb " + doc + " restart");
+  ASSERT_EQ(r.status, 0) << r.out;
+  EXPECT_NE(r.out.find("animation 1: restarted: 2 bodies"), std::string::npos) << r.out;
+  EXPECT_EQ(Read(doc), before) << "restart must not rewrite the document";
+  EXPECT_EQ(fs::last_write_time(doc), written);
+  // With -o the result goes to OUT, and IN is still untouched.
+  const Result o = Exec(kDochost + " verb " + doc + " restart -o " + (dir / "out.ens").string());
+  ASSERT_EQ(o.status, 0) << o.out;
+  EXPECT_TRUE(fs::exists(dir / "out.ens"));
+  EXPECT_EQ(Read(doc), before);
 }
 
 TEST(Dochost, HostVerbsRunHeadless) {

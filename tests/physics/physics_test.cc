@@ -2,8 +2,8 @@
 // forces and torques, links, decoupling, and errors.
 #include <gtest/gtest.h>
 
-#include "core/app/pipeline.h"
 #include "core/lang/lang.h"
+#include "core/pipeline/pipeline.h"
 
 namespace asgard::physics {
 namespace {

@@ -22,13 +22,13 @@ namespace t = render::testing;
 const std::string kAsgard = std::string(ASGARD_BINARY_DIR) + "/core/app/asgard";
 
 struct Still {
-  app::Run run;
+  pipeline::Run run;
   std::unique_ptr<render::SceneSampler> sampler;
   StillScene scene;
 
   Still(const std::string& file, double time, int w = 64, int h = 48) : run(t::SimulateFile(file)) {
     if (!run.ok) return;
-    sampler = std::make_unique<render::SceneSampler>(run);
+    sampler = std::make_unique<render::SceneSampler>(run.scene, *run.equations, *run.simulation);
     scene.sampler = sampler.get();
     scene.t = time;
     scene.camera = render::MakeCamera(*sampler->SceneView(), w, h);
@@ -61,7 +61,7 @@ TEST(Rayshade, DescribesEveryPiece) {
     EXPECT_NE(text.find(key), std::string::npos) << key;
   size_t spheres = 0, polys = 0;
   for (const auto& b : s.sampler->bodies())
-    for (const auto& p : b.pieces) p.sphere ? ++spheres : polys += p.faces.size();
+    for (const auto& p : b.pieces) p.sphere ? ++spheres : polys += p.hull.faces.size();
   EXPECT_EQ(Count(text, "\nsphere "), spheres);
   EXPECT_EQ(Count(text, "\npoly "), polys);
 }

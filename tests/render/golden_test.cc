@@ -44,14 +44,14 @@ void ExpectMatchesGolden(const Image& image, const std::string& name) {
 }
 
 struct Fixture {
-  app::Run run;
+  pipeline::Run run;
   std::unique_ptr<SceneSampler> sampler;
   FrameInput frame;
 
   Fixture(const std::string& scene, double t, std::optional<ViewState> view = std::nullopt)
       : run(SimulateFile(scene)) {
     if (!run.ok) return;
-    sampler = std::make_unique<SceneSampler>(run);
+    sampler = std::make_unique<SceneSampler>(run.scene, *run.equations, *run.simulation);
     const ViewState v = view.value_or(*sampler->SceneView());
     frame.sampler = sampler.get();
     frame.t = t;

@@ -88,18 +88,18 @@ TEST(Camera, ProjectionMatrixAgreesWithProject) {
 }
 
 TEST(Sampler, PendulumPosesFramesAndOverlays) {
-  const app::Run run = SimulateFile("samples/pendulum.al");
+  const pipeline::Run run = SimulateFile("samples/pendulum.al");
   ASSERT_TRUE(run.ok);
-  SceneSampler s(run);
+  SceneSampler s(run.scene, *run.equations, *run.simulation);
   ASSERT_EQ(s.bodies().size(), 3u);
   EXPECT_TRUE(s.unknown_colors().empty());
   EXPECT_EQ(s.bodies()[0].pieces[0].color, (Rgb{0, 0, 0}));  // -color black faces
   EXPECT_TRUE(s.bodies()[2].pieces[0].sphere);
   EXPECT_EQ(s.FrameTimes().size(), 151u);  // 5 s at 30 frames per second, both ends
   EXPECT_DOUBLE_EQ(s.FrameTimes().back(), 5.0);
-  // Poses are app::SampleBody's.
+  // Poses are pipeline::SampleBody's.
   const auto poses = s.Poses(1.25);
-  const auto f = app::SampleBody(*run.equations, *run.simulation, 1, 1.25);
+  const auto f = pipeline::SampleBody(*run.equations, *run.simulation, 1, 1.25);
   EXPECT_DOUBLE_EQ(poses[1].p.x(), f.p[0]);
   EXPECT_DOUBLE_EQ(poses[1].q.w(), f.q[0]);
   // The bound holds every body at the start, and each body's path until it
@@ -143,7 +143,7 @@ TEST(Sampler, PendulumPosesFramesAndOverlays) {
 }
 
 TEST(Sampler, ViewElementAndLightsOverrideDefaults) {
-  const app::Run run = app::Simulate(R"(simulator -finish 0.5
+  const pipeline::Run run = pipeline::Simulate(R"(simulator -finish 0.5
 shape_set ball -desc {-sub {-sphere 1}}
 body a -shape ball -color "no such colour"
 view main -scale 2 -center {1 2 3}
@@ -151,7 +151,7 @@ view side -rot {0 1.5707963267948966 0}
 lightsource -type point -pos {1 2 3} -color red -intensity 0.5
 )");
   ASSERT_TRUE(run.ok);
-  SceneSampler s(run);
+  SceneSampler s(run.scene, *run.equations, *run.simulation);
   ASSERT_EQ(s.unknown_colors().size(), 1u);
   EXPECT_EQ(s.bodies()[0].pieces[0].color, PaletteColor(0));
   const ViewState last = *s.SceneView();
@@ -187,18 +187,19 @@ void ExpectOutward(const Mesh& m, const Eigen::Vector3f& inside) {
 }
 
 TEST(Mesh, HullsAndSpheresAreClosedAndOutward) {
-  const app::Run run = app::Simulate(R"(simulator -finish 0.1
+  const pipeline::Run run = pipeline::Simulate(R"(simulator -finish 0.1
 shape_set s -desc {-sub {-box {2 1 1}} -sub {-pos {3 0 0} -sphere 0.5}}
 body a -shape s
 )");
   ASSERT_TRUE(run.ok);
-  SceneSampler s(run);
+  SceneSampler s(run.scene, *run.equations, *run.simulation);
   const auto& pieces = s.bodies()[0].pieces;
   ASSERT_EQ(pieces.size(), 2u);
   const Mesh box = PieceMesh(pieces[0]);
   EXPECT_EQ(box.indices.size(), 36u);  // 6 faces × 2 triangles
   Eigen::Vector3f mid = Eigen::Vector3f::Zero();
-  for (const auto& v : pieces[0].vertices) mid += v.cast<float>() / pieces[0].vertices.size();
+  for (const auto& v : pieces[0].hull.vertices)
+    mid += v.cast<float>() / pieces[0].hull.vertices.size();
   ExpectOutward(box, mid);
   const Mesh ball = PieceMesh(pieces[1], 16);
   ExpectOutward(ball, pieces[1].center.cast<float>());
@@ -234,9 +235,9 @@ TEST(Image, PngRoundTripPpmAndDownsample) {
 }
 
 TEST(Shaded, SameInputSamePixels) {
-  const app::Run run = SimulateFile("tests/render/scenes/colours.al");
+  const pipeline::Run run = SimulateFile("tests/render/scenes/colours.al");
   ASSERT_TRUE(run.ok);
-  SceneSampler s(run);
+  SceneSampler s(run.scene, *run.equations, *run.simulation);
   const Camera cam = MakeCamera(*s.SceneView(), 96, 64);
   ShadedRenderer r1(96, 64), r2(96, 64);
   ASSERT_TRUE(r1.ok()) << r1.error();
@@ -253,9 +254,9 @@ TEST(Shaded, SameInputSamePixels) {
 }
 
 TEST(Wire, SameInputSamePixelsAndBodiesDrawn) {
-  const app::Run run = SimulateFile("tests/render/scenes/colours.al");
+  const pipeline::Run run = SimulateFile("tests/render/scenes/colours.al");
   ASSERT_TRUE(run.ok);
-  SceneSampler s(run);
+  SceneSampler s(run.scene, *run.equations, *run.simulation);
   FrameInput f;
   f.sampler = &s;
   f.t = 0.5;

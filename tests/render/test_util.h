@@ -8,7 +8,7 @@
 #include <sstream>
 #include <string>
 
-#include "core/app/pipeline.h"
+#include "core/pipeline/pipeline.h"
 
 namespace asgard::render::testing {
 
@@ -24,8 +24,8 @@ inline std::string ReadText(const std::string& path) {
 }
 
 // Simulates a scene file of the repository (relative path).
-inline app::Run SimulateFile(const std::string& rel) {
-  return app::Simulate(ReadText(SourcePath(rel)));
+inline pipeline::Run SimulateFile(const std::string& rel) {
+  return pipeline::Simulate(ReadText(SourcePath(rel)));
 }
 
 // A fresh scratch directory under the build tree.

@@ -6,20 +6,20 @@
 #include <fstream>
 #include <sstream>
 
-#include "core/app/pipeline.h"
+#include "core/pipeline/pipeline.h"
 #include "tests/solver/reference_problems.h"
 
 namespace asgard {
 namespace {
 
-using SceneRun = app::Run;
+using SceneRun = pipeline::Run;
 using physics::BodySlot;
 
 SceneRun SimulateOk(const std::string& text, double rtol = 1e-8, double atol = 1e-10) {
-  app::RunOptions opts;
+  pipeline::RunOptions opts;
   opts.solver.rtol = rtol;
   opts.solver.atol = atol;
-  SceneRun run = app::Simulate(text, opts);
+  SceneRun run = pipeline::Simulate(text, opts);
   for (const auto& d : run.diagnostics)
     if (d.severity == scene::Severity::kError) ADD_FAILURE() << d.span.line << ": " << d.message;
   EXPECT_TRUE(run.ok) << run.solver_error;
@@ -41,7 +41,8 @@ Eigen::Vector3d Position(const SceneRun& run, const std::string& body, double t)
 }
 
 Eigen::Vector3d Spin(const SceneRun& run, const std::string& body, double t) {
-  const auto f = app::SampleBody(*run.equations, *run.simulation, run.equations->FindBody(body), t);
+  const auto f =
+      pipeline::SampleBody(*run.equations, *run.simulation, run.equations->FindBody(body), t);
   return {f.w[0], f.w[1], f.w[2]};
 }
 
@@ -143,7 +144,7 @@ TEST(Collision, ACubeFallingCornerFirstOnAStaticFloorKeepsItsKineticEnergy) {
   const int c = eq.FindBody("c");
   const double t0 = 0.0, t1 = 2.0;
   auto energy = [&](double t) {
-    const auto s = app::SampleBody(eq, *run.simulation, c, t);
+    const auto s = pipeline::SampleBody(eq, *run.simulation, c, t);
     const Eigen::Quaterniond q(s.q[0], s.q[1], s.q[2], s.q[3]);
     const Eigen::Matrix3d I = q.toRotationMatrix() * eq.bodies[c].inertia *
                               q.toRotationMatrix().transpose();
@@ -305,14 +306,16 @@ TEST(Collision, ImpactsThatDoNotResolveEndWithAReportNotAHang) {
   // Eight balls in a walled box at a tolerance of 0.1: positions are so loose
   // that a ball jams against a wall.  The run must end — simulated, or with a
   // report naming the bodies and the time.
-  app::RunOptions opts;
+  pipeline::RunOptions opts;
   opts.solver.rtol = opts.solver.atol = 0.1;
-  const SceneRun run = app::Simulate(ReadSample("../tests/solver/data/balls_in_box8.al"), opts);
+  const SceneRun run =
+      pipeline::Simulate(ReadSample("../tests/solver/data/balls_in_box8.al"), opts);
   if (!run.ok) {
     EXPECT_NE(run.solver_error.find("do not resolve at t="), std::string::npos) << run.solver_error;
   }
   opts.solver.rtol = opts.solver.atol = 0.01;
-  const SceneRun tight = app::Simulate(ReadSample("../tests/solver/data/balls_in_box8.al"), opts);
+  const SceneRun tight =
+      pipeline::Simulate(ReadSample("../tests/solver/data/balls_in_box8.al"), opts);
   EXPECT_TRUE(tight.ok) << tight.solver_error;
   EXPECT_GT(tight.collisions->impacts().size(), 10u);
 }

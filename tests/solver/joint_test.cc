@@ -6,7 +6,7 @@
 #include <cstdio>
 #include <string>
 
-#include "core/app/pipeline.h"
+#include "core/pipeline/pipeline.h"
 #include "core/physics/joints.h"
 #include "tests/solver/reference_problems.h"
 
@@ -15,20 +15,20 @@ namespace {
 
 using physics::BodySlot;
 
-app::Run Simulate(const std::string& text, double rtol, double atol,
+pipeline::Run Simulate(const std::string& text, double rtol, double atol,
              solver::SolverOptions::Method method = solver::SolverOptions::Method::kAuto) {
-  app::RunOptions opts;
+  pipeline::RunOptions opts;
   opts.solver.rtol = rtol;
   opts.solver.atol = atol;
   opts.solver.method = method;
   opts.use_scene_tolerances = false;
-  app::Run run = app::Simulate(text, opts);
+  pipeline::Run run = pipeline::Simulate(text, opts);
   for (const auto& d : run.diagnostics) ADD_FAILURE() << d.span.line << ": " << d.message;
   EXPECT_TRUE(run.ok) << run.solver_error;
   return run;
 }
 
-Eigen::Vector3d Position(const app::Run& run, const std::string& body, double t) {
+Eigen::Vector3d Position(const pipeline::Run& run, const std::string& body, double t) {
   const int b = run.equations->FindBody(body);
   const int v = run.equations->bodies[b].first_var;
   return {run.simulation->Value(v + physics::kX, t), run.simulation->Value(v + physics::kY, t),
@@ -74,7 +74,7 @@ double PendulumAngle(double length, double theta0, double t) {
 TEST(ExactJoint, PendulumFollowsItsOneDegreeOfFreedomSolution) {
   const double L = 2.0, theta0 = 1.0;
   for (double rtol : {1e-4, 1e-6, 1e-8}) {
-    const app::Run run = Simulate(RigidPendulum(L, theta0, 5.0), rtol, rtol);
+    const pipeline::Run run = Simulate(RigidPendulum(L, theta0, 5.0), rtol, rtol);
     double worst = 0.0;
     for (double t = 0.0; t <= 5.0; t += 0.25) {
       const double th = PendulumAngle(L, theta0, t);
@@ -92,7 +92,7 @@ TEST(ExactJoint, ErrorFallsMonotonicallyWithTheTolerance) {
   const double L = 2.0, theta0 = 1.0;
   double previous = 1e300;
   for (double rtol : {1e-2, 1e-3, 1e-4, 1e-5, 1e-6, 1e-7, 1e-8}) {
-    const app::Run run = Simulate(RigidPendulum(L, theta0, 5.0), rtol, rtol);
+    const pipeline::Run run = Simulate(RigidPendulum(L, theta0, 5.0), rtol, rtol);
     double worst = 0.0;
     for (double t = 0.0; t <= 5.0; t += 0.1) {
       const double th = PendulumAngle(L, theta0, t);
@@ -129,7 +129,7 @@ std::string Chain(int n, double finish, bool closed_loop = false) {
   return s;
 }
 
-double ChainEnergy(const app::Run& run, int n, double t) {
+double ChainEnergy(const pipeline::Run& run, int n, double t) {
   double e = 0.0;
   for (int i = 0; i < n; ++i) {
     const int b = run.equations->FindBody("r" + std::to_string(i));
@@ -145,7 +145,7 @@ double ChainEnergy(const app::Run& run, int n, double t) {
 }
 
 // Largest distance between the two points of any joint over the run.
-double WorstJointGap(const app::Run& run, double finish) {
+double WorstJointGap(const pipeline::Run& run, double finish) {
   double worst = 0.0;
   const auto& sys = *run.equations;
   for (double t = 0.0; t <= finish; t += finish / 50) {
@@ -173,7 +173,7 @@ double WorstJointGap(const app::Run& run, double finish) {
 TEST(ExactJoint, ChainOfFiveConservesEnergyAndHoldsItsJoints) {
   const int n = 5;
   const double rtol = 1e-7;
-  const app::Run run = Simulate(Chain(n, 5.0), rtol, rtol);
+  const pipeline::Run run = Simulate(Chain(n, 5.0), rtol, rtol);
   EXPECT_EQ(static_cast<int>(run.equations->joints.size()), n);
   const double e0 = ChainEnergy(run, n, 0.0);
   // The chain falls through a height of ~n²/2 · g: energy scale m g n²/2.
@@ -188,7 +188,7 @@ TEST(ExactJoint, ChainOfFiveConservesEnergyAndHoldsItsJoints) {
 TEST(ExactJoint, ClosedLoopIsRegularizedNotSingular) {
   // Four rods whose far end is pinned too: a closed loop with redundant
   // directions (the loop is straight and taut).
-  const app::Run run = Simulate(Chain(4, 2.0, /*closed_loop=*/true), 1e-6, 1e-6);
+  const pipeline::Run run = Simulate(Chain(4, 2.0, /*closed_loop=*/true), 1e-6, 1e-6);
   EXPECT_LT(WorstJointGap(run, 2.0), 1e-3);
 }
 
@@ -206,7 +206,7 @@ TEST(ExactJoint, AJointHitByABallMovesItsGroupAndKeepsMomentum) {
       "link -body1 r0 -offset1 {0.5 0 0} -body2 r1 -offset2 {-0.5 0 0}\n"
       "body ball -shape ball -mass 1 -ct 1 -init_pos {1.7 2 0} -init_dpos {0 -3 0}\n"
       "simulator -finish 1.5\n";
-  const app::Run run = Simulate(text, 1e-7, 1e-9);
+  const pipeline::Run run = Simulate(text, 1e-7, 1e-9);
   ASSERT_NE(run.collisions, nullptr);
   ASSERT_GE(run.collisions->impacts().size(), 1u);
   const double t_hit = run.collisions->impacts().front().t;
@@ -246,7 +246,7 @@ TEST(ExactJoint, AJointHitByABallMovesItsGroupAndKeepsMomentum) {
 
 TEST(ExactJoint, LinkWithTightnessStaysASpring) {
   const std::string spring = testing::Pendulum(2.0, 0.5, 9.81, 1e4, 1.0);
-  const app::Run run = Simulate(spring, 1e-6, 1e-6);
+  const pipeline::Run run = Simulate(spring, 1e-6, 1e-6);
   EXPECT_TRUE(run.equations->joints.empty());
   const std::string exact = RigidPendulum(2.0, 0.5, 1.0);
   EXPECT_EQ(Simulate(exact, 1e-6, 1e-6).equations->joints.size(), 1u);
@@ -255,8 +255,8 @@ TEST(ExactJoint, LinkWithTightnessStaysASpring) {
 TEST(MethodChoice, FreeFlightCostsABoundedNumberOfSteps) {
   // A thrown ball under gravity: the step grows geometrically until it spans
   // the run, so a run 100 times longer costs no more steps.
-  const app::Run short_run = Simulate(testing::Projectile(10.0), 1e-8, 1e-8);
-  const app::Run long_run = Simulate(testing::Projectile(1000.0), 1e-8, 1e-8);
+  const pipeline::Run short_run = Simulate(testing::Projectile(10.0), 1e-8, 1e-8);
+  const pipeline::Run long_run = Simulate(testing::Projectile(1000.0), 1e-8, 1e-8);
   EXPECT_LE(long_run.simulation->totals().steps, short_run.simulation->totals().steps);
   for (int c = 0; c < long_run.simulation->component_count(); ++c)
     EXPECT_LE(long_run.simulation->component(c).counters().steps, 12) << "component " << c;
@@ -264,14 +264,14 @@ TEST(MethodChoice, FreeFlightCostsABoundedNumberOfSteps) {
 
 TEST(MethodChoice, StiffSpringGoesImplicitAndSoftMotionExplicit) {
   // A critically damped link with k = 1e8: eigenvalues ~ −1e4.
-  const app::Run stiff = Simulate(testing::DampedLink(1e8, 1.0, 0.1, 1.0), 1e-6, 1e-9);
+  const pipeline::Run stiff = Simulate(testing::DampedLink(1e8, 1.0, 0.1, 1.0), 1e-6, 1e-9);
   EXPECT_GT(stiff.simulation->totals().trbdf2_steps, 0);
   EXPECT_LT(stiff.simulation->totals().steps, 2000);
   const double x = stiff.simulation->Value(
       stiff.equations->bodies[stiff.equations->FindBody("d")].first_var + physics::kX, 1e-3);
   EXPECT_NEAR(x, testing::DampedLinkExact(1e8, 1.0, 0.1, 1e-3), 1e-6);
   // An undamped oscillator of frequency 1: explicit throughout.
-  const app::Run soft = Simulate(testing::Oscillator(1.0, 1.0, 10.0), 1e-8, 1e-10);
+  const pipeline::Run soft = Simulate(testing::Oscillator(1.0, 1.0, 10.0), 1e-8, 1e-10);
   EXPECT_EQ(soft.simulation->totals().trbdf2_steps, 0);
   const double xs = soft.simulation->Value(
       soft.equations->bodies[soft.equations->FindBody("o")].first_var + physics::kX, 10.0);
@@ -281,7 +281,7 @@ TEST(MethodChoice, StiffSpringGoesImplicitAndSoftMotionExplicit) {
 TEST(MethodChoice, ExplicitPlaybackBetweenSamplesIsFourthOrder) {
   // cos t between samples of large steps: the continuous extension keeps
   // the interpolation error near the tolerance, not at Hermite's h⁴/384.
-  const app::Run run = Simulate(testing::Oscillator(1.0, 1.0, 10.0), 1e-6, 1e-8);
+  const pipeline::Run run = Simulate(testing::Oscillator(1.0, 1.0, 10.0), 1e-6, 1e-8);
   const int v = run.equations->bodies[run.equations->FindBody("o")].first_var + physics::kX;
   double worst = 0.0;
   for (double t = 0.0; t <= 10.0; t += 0.01)

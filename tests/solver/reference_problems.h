@@ -5,7 +5,7 @@
 #include <cmath>
 #include <string>
 
-#include "core/app/pipeline.h"
+#include "core/pipeline/pipeline.h"
 
 namespace asgard::testing {
 

@@ -7,20 +7,20 @@
 #include <fstream>
 #include <sstream>
 
-#include "core/app/pipeline.h"
 #include "core/physics/trajectory.h"
+#include "core/pipeline/pipeline.h"
 #include "tests/solver/reference_problems.h"
 
 namespace asgard {
 namespace {
 
-using SceneRun = app::Run;
+using SceneRun = pipeline::Run;
 using physics::BodySlot;
 
 SceneRun SimulateOk(const std::string& text, solver::SolverOptions so = {}) {
-  app::RunOptions opts;
+  pipeline::RunOptions opts;
   opts.solver = so;
-  SceneRun run = app::Simulate(text, opts);
+  SceneRun run = pipeline::Simulate(text, opts);
   for (const auto& d : run.diagnostics) ADD_FAILURE() << d.span.line << ": " << d.message;
   EXPECT_TRUE(run.ok) << run.solver_error;
   return run;

@@ -1,0 +1,115 @@
+// The simulate pipeline (see pipeline.h).
+#include "core/pipeline/pipeline.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+
+#include "core/lang/lang.h"
+#include "core/protocol/protocol.h"
+
+namespace asgard::pipeline {
+
+Run Check(scene::Scene scene, const RunOptions& options) {
+  Run run;
+  run.scene = std::move(scene);
+  run.diagnostics = run.scene.diagnostics;
+  if (options.until) {
+    scene::Scene until = run.scene;
+    if (!until.simulator) until.simulator.emplace();
+    until.simulator->finish = *options.until;
+    run.equations = std::make_unique<physics::EquationSystem>(physics::FormEquations(until));
+  } else {
+    run.equations = std::make_unique<physics::EquationSystem>(physics::FormEquations(run.scene));
+  }
+  for (const auto& d : run.equations->diagnostics) run.diagnostics.push_back(d);
+  run.ok = true;
+  for (const auto& d : run.diagnostics) run.ok &= d.severity != scene::Severity::kError;
+  return run;
+}
+
+Run Check(std::string_view text) { return Check(lang::Evaluate(text)); }
+
+bool Solve(Run& run, const RunOptions& options) {
+  if (!run.equations || (!run.ok && !options.allow_scene_errors)) return run.ok = false;
+  solver::SolverOptions so = options.solver;
+  const auto& simulator = run.scene.simulator;
+  if (options.use_scene_tolerances && simulator) {
+    if (simulator->rtol) so.rtol = *simulator->rtol;
+    if (simulator->atol) so.atol = *simulator->atol;
+    if (simulator->step) so.initial_step = *simulator->step;
+    if (simulator->max_step) so.max_step = *simulator->max_step;
+  }
+  const auto start = std::chrono::steady_clock::now();
+  run.simulation = std::make_unique<solver::Simulation>(*run.equations, so);
+  const bool collide = options.collisions.value_or(!simulator || simulator->collisions);
+  if (collide && run.equations->bodies.size() >= 2)
+    run.collisions = std::make_unique<solver::CollisionMonitor>(*run.simulation);
+  if (options.prepare_only) return run.ok = true;
+  const bool ok = run.simulation->Run(options.progress);
+  if (run.collisions)
+    for (const auto& w : run.collisions->warnings()) run.diagnostics.push_back(w);
+  run.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  if (!ok) run.solver_error = run.simulation->error();
+  return run.ok = ok;
+}
+
+Run Simulate(scene::Scene scene, const RunOptions& options) {
+  Run run = Check(std::move(scene), options);
+  Solve(run, options);
+  return run;
+}
+
+Run Simulate(std::string_view text, const RunOptions& options) {
+  return Simulate(lang::Evaluate(text), options);
+}
+
+double FrameRate(const scene::Scene& scene) {
+  return scene.simulator ? scene.simulator->frame_rate : protocol::kDefaultFrameRate;
+}
+
+BodyFrame SampleBody(const physics::EquationSystem& eq, const solver::Simulation& sim, int b,
+                     double t) {
+  const physics::BodyModel& m = eq.bodies[b];
+  BodyFrame f{};
+  if (m.first_var < 0) {
+    for (int a = 0; a < 3; ++a) f.p[a] = m.x0[a];
+    f.q[0] = m.q0.w(), f.q[1] = m.q0.x(), f.q[2] = m.q0.y(), f.q[3] = m.q0.z();
+    return f;
+  }
+  auto val = [&](int slot) { return sim.Value(m.first_var + slot, t); };
+  for (int a = 0; a < 3; ++a) {
+    f.p[a] = val(physics::kX + a);
+    f.v[a] = val(physics::kDx + a);
+  }
+  Eigen::Quaterniond q(val(physics::kQw), val(physics::kQx), val(physics::kQy), val(physics::kQz));
+  q.normalize();
+  f.q[0] = q.w(), f.q[1] = q.x(), f.q[2] = q.y(), f.q[3] = q.z();
+  const Eigen::Vector3d w_body(val(physics::kW1), val(physics::kW2), val(physics::kW3));
+  const Eigen::Vector3d w = q.toRotationMatrix() * w_body;
+  for (int a = 0; a < 3; ++a) f.w[a] = w[a];
+  return f;
+}
+
+Frames SampleFrames(const physics::EquationSystem& eq, const solver::Simulation& sim, double rate) {
+  Frames frames;
+  for (const auto& b : eq.bodies) frames.bodies.push_back(b.name);
+  frames.times = FrameTimes(eq.t0, eq.t1, rate);
+  for (double t : frames.times) {
+    std::vector<BodyFrame> row;
+    for (size_t b = 0; b < eq.bodies.size(); ++b)
+      row.push_back(SampleBody(eq, sim, static_cast<int>(b), t));
+    frames.states.push_back(std::move(row));
+  }
+  return frames;
+}
+
+std::vector<double> FrameTimes(double t0, double t1, double rate) {
+  const long count = std::max(1L, std::lround(std::floor((t1 - t0) * rate + 1e-9))) + 1;
+  std::vector<double> times;
+  for (long k = 0; k < count; ++k)
+    times.push_back(k + 1 == count ? t1 : std::min(t1, t0 + static_cast<double>(k) / rate));
+  return times;
+}
+
+}  // namespace asgard::pipeline
