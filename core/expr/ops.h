@@ -62,10 +62,9 @@ enum class Jump : uint8_t {
 enum OpFlag : uint8_t {
   kCallable = 1,            // name(args) is accepted in expression text
   kVariadic = 2,            // as a call: one or more arguments, folded left
-  kBoolean = 4,             // the value is always 0 or 1
-  kComparison = 8,          // compares two numbers (<, <=, >, >=, ==, !=)
-  kPiecewiseConstant = 16,  // derivative 0 wherever it exists
-  kIdempotent = 32,         // f(f(x)) == f(x); with two operands x op x == x
+  kBoolean = 4,             // the value is always 0 or 1 (comparisons and logic)
+  kPiecewiseConstant = 8,   // derivative 0 wherever it exists
+  kIdempotent = 16,         // f(f(x)) == f(x); with two operands x op x == x
 };
 
 struct OpInfo {
@@ -87,8 +86,7 @@ inline constexpr uint8_t kFunction = kCallable;
 inline constexpr uint8_t kKink = kCallable | kIdempotent;
 inline constexpr uint8_t kStep = kCallable | kPiecewiseConstant | kIdempotent;
 inline constexpr uint8_t kChoice = kCallable | kVariadic | kIdempotent;
-inline constexpr uint8_t kCompare = kBoolean | kComparison | kPiecewiseConstant;
-inline constexpr uint8_t kLogic = kBoolean | kPiecewiseConstant;
+inline constexpr uint8_t kTruth = kBoolean | kPiecewiseConstant;
 
 // Indexed by Op.
 // clang-format off
@@ -122,15 +120,15 @@ inline constexpr OpInfo kOps[] = {
     {Op::kMax,     "max",      2, N::kCall,     kPrimary,         kChoice,    Jump::kDifference},
     {Op::kFmod,    "fmod",     2, N::kCall,     kPrimary,         kFunction,  Jump::kModulus},
     {Op::kHypot,   "hypot",    2, N::kCall,     kPrimary,         kFunction,  Jump::kNone},
-    {Op::kLt,      "<",        2, N::kInfix,    kRelational,      kCompare,   Jump::kDifference},
-    {Op::kLe,      "<=",       2, N::kInfix,    kRelational,      kCompare,   Jump::kDifference},
-    {Op::kGt,      ">",        2, N::kInfix,    kRelational,      kCompare,   Jump::kDifference},
-    {Op::kGe,      ">=",       2, N::kInfix,    kRelational,      kCompare,   Jump::kDifference},
-    {Op::kEq,      "==",       2, N::kInfix,    kEquality,        kCompare,   Jump::kDifference},
-    {Op::kNe,      "!=",       2, N::kInfix,    kEquality,        kCompare,   Jump::kDifference},
-    {Op::kAnd,     "&&",       2, N::kInfix,    kAndPrec,         kLogic,     Jump::kOperands},
-    {Op::kOr,      "||",       2, N::kInfix,    kOrPrec,          kLogic,     Jump::kOperands},
-    {Op::kNot,     "!",        1, N::kPrefix,   kUnary,           kLogic,     Jump::kOperands},
+    {Op::kLt,      "<",        2, N::kInfix,    kRelational,      kTruth,     Jump::kDifference},
+    {Op::kLe,      "<=",       2, N::kInfix,    kRelational,      kTruth,     Jump::kDifference},
+    {Op::kGt,      ">",        2, N::kInfix,    kRelational,      kTruth,     Jump::kDifference},
+    {Op::kGe,      ">=",       2, N::kInfix,    kRelational,      kTruth,     Jump::kDifference},
+    {Op::kEq,      "==",       2, N::kInfix,    kEquality,        kTruth,     Jump::kDifference},
+    {Op::kNe,      "!=",       2, N::kInfix,    kEquality,        kTruth,     Jump::kDifference},
+    {Op::kAnd,     "&&",       2, N::kInfix,    kAndPrec,         kTruth,     Jump::kOperands},
+    {Op::kOr,      "||",       2, N::kInfix,    kOrPrec,          kTruth,     Jump::kOperands},
+    {Op::kNot,     "!",        1, N::kPrefix,   kUnary,           kTruth,     Jump::kOperands},
     {Op::kSelect,  "select",   3, N::kSelect,   kTernary,         0,          Jump::kCondition},
 };
 // clang-format on
