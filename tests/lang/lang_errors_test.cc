@@ -115,6 +115,8 @@ std::vector<BadInput> Catalogue() {
 
 class LangBadInput : public ::testing::TestWithParam<BadInput> {};
 
+void PrintTo(const BadInput& in, std::ostream* os) { *os << in.name; }
+
 TEST_P(LangBadInput, ReportsAnErrorAtTheRightPlaceWithoutCrashing) {
   const BadInput& in = GetParam();
   EvalLimits limits;
