@@ -6,7 +6,8 @@
 // jumps where an operand crosses a threshold; they are solved for only when
 // that operand is an affine function a + b t of time (constants and t only —
 // no Var, no Extern), which covers the scripted cases "t > 2", "floor(t/0.5)",
-// "abs(t - 1)", "fmod(t, 0.25)".  Each reachable node contributes:
+// "abs(t - 1)", "fmod(t, 0.25)".  Each reachable node contributes, by the
+// Jump rule of its row in the operator table (ops.h):
 //   comparisons, min, max   lhs - rhs = 0
 //   sign, abs, !, &&, ||    operand = 0
 //   Select                  condition = 0 (a comparison condition is handled
@@ -22,6 +23,7 @@
 
 #include "core/expr/expr.h"
 #include "core/expr/internal.h"
+#include "core/expr/ops.h"
 
 namespace asgard::expr {
 namespace {
@@ -152,33 +154,23 @@ std::vector<double> Pool::TimeBreakpoints(NodeId e, double t0, double t1) const 
     if ((impl_->flags[id] & kHasTime) == 0 || !seen.insert(id).second) continue;
     const Node& n = nodes_[id];
     stack.insert(stack.end(), n.args.begin(), n.args.end());
-    switch (n.op) {
-      case Op::kLt:
-      case Op::kLe:
-      case Op::kGt:
-      case Op::kGe:
-      case Op::kEq:
-      case Op::kNe:
-      case Op::kMin:
-      case Op::kMax:
+    switch (Info(n.op).jump) {
+      case Jump::kNone:
+        break;
+      case Jump::kDifference:
         if (auto d = Difference(*this, n.args[0], n.args[1])) out.Crossing(*d, 0.0);
         break;
-      case Op::kSign:
-      case Op::kAbs:
-      case Op::kNot:
-      case Op::kAnd:
-      case Op::kOr:
+      case Jump::kOperands:
         for (NodeId arg : n.args)
           if (auto f = AffineInTime(*this, arg)) out.Crossing(*f, 0.0);
         break;
-      case Op::kSelect:
+      case Jump::kCondition:
         if (auto f = AffineInTime(*this, n.args[0])) out.Crossing(*f, 0.0);
         break;
-      case Op::kFloor:
-      case Op::kCeil:
+      case Jump::kIntegers:
         if (auto f = AffineInTime(*this, n.args[0])) out.IntegerCrossings(*f);
         break;
-      case Op::kFmod: {
+      case Jump::kModulus: {
         auto q = ConstValue(n.args[1]);
         auto f = AffineInTime(*this, n.args[0]);
         if (q && f && *q != 0.0 && std::isfinite(*q)) {
@@ -187,8 +179,6 @@ std::vector<double> Pool::TimeBreakpoints(NodeId e, double t0, double t1) const 
         }
         break;
       }
-      default:
-        break;
     }
   }
   return out.Take();

@@ -9,15 +9,16 @@
 // same walk with different leaf rules: d/dt t = 1, d/dt Var = 0,
 // d/dt Extern(fn, d) = Extern(fn, d + 1).
 //
-// Conventions for non-smooth operations: comparisons, logic, floor, ceil and
-// sign have derivative 0; abs' = sign(x) x'; min and max select the
-// derivative of the chosen operand with the same comparison the evaluation
+// Conventions for non-smooth operations: the piecewise-constant operations of
+// the operator table (comparisons, logic, floor, ceil, sign) have derivative 0; abs' = sign(x) x';
+// min and max select the derivative of the chosen operand with the same comparison the evaluation
 // uses; Select(c, a, b)' = Select(c, a', b'); fmod(a, b)' = a' - b' trunc(a/b).
 #include <array>
 #include <stdexcept>
 
 #include "core/expr/expr.h"
 #include "core/expr/internal.h"
+#include "core/expr/ops.h"
 
 namespace asgard::expr {
 namespace {
@@ -93,6 +94,8 @@ NodeId Pool::DerivativeStep(NodeId e, int var_index, std::span<const NodeId> dar
       break;
   }
 
+  if (Info(n.op).Has(kPiecewiseConstant)) return zero;  // comparisons, logic, floor ...
+
   // Functions: a (and b) are the operands, da (and db) their derivatives.
   const NodeId a = n.args[0];
   const NodeId da = dargs[0];
@@ -138,19 +141,6 @@ NodeId Pool::DerivativeStep(NodeId e, int var_index, std::span<const NodeId> dar
       return Div(da, Mul(Const(2.0), e));
     case Op::kAbs:
       return Mul(fn(Op::kSign, a), da);
-    case Op::kFloor:
-    case Op::kCeil:
-    case Op::kSign:
-    case Op::kLt:
-    case Op::kLe:
-    case Op::kGt:
-    case Op::kGe:
-    case Op::kEq:
-    case Op::kNe:
-    case Op::kAnd:
-    case Op::kOr:
-    case Op::kNot:
-      return zero;
     case Op::kAtan2:  // atan2(a, b) = atan(a / b): (b a' - a b') / (a^2 + b^2)
       return Div(Sub(Mul(b, da), Mul(a, db)), Add(square(a), square(b)));
     case Op::kMin:  // min(a, b) = b < a ? b : a

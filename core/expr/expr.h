@@ -43,6 +43,8 @@ namespace asgard::expr {
 
 using NodeId = uint32_t;
 
+// Every Op has a row in the operator table (ops.h) with its name, arity,
+// notation and precedence; kSelect stays last.
 enum class Op : uint8_t {
   // leaves
   kConst,

@@ -1,8 +1,9 @@
 // Internal helpers shared by the expression module's translation units: the
 // scalar semantics of every operation (used both by constant folding and by
 // the tape, so a folded constant is bit-identical to the value the tape would
-// compute), arity, and an iterative post-order walk over the DAG (no
-// recursion, so arbitrarily deep expressions cannot overflow the stack).
+// compute) and an iterative post-order walk over the DAG (no recursion, so
+// arbitrarily deep expressions cannot overflow the stack).  The other facts
+// about each operation are in the operator table, ops.h.
 #pragma once
 
 #include <cmath>
@@ -11,43 +12,9 @@
 #include <vector>
 
 #include "core/expr/expr.h"
+#include "core/expr/ops.h"
 
 namespace asgard::expr::internal {
-
-// Number of operands of `op`; -1 for n-ary (kAdd, kMul), 0 for leaves.
-inline int Arity(Op op) {
-  switch (op) {
-    case Op::kConst:
-    case Op::kTime:
-    case Op::kVar:
-    case Op::kExtern:
-      return 0;
-    case Op::kAdd:
-    case Op::kMul:
-      return -1;
-    case Op::kPow:
-    case Op::kAtan2:
-    case Op::kMin:
-    case Op::kMax:
-    case Op::kFmod:
-    case Op::kHypot:
-    case Op::kLt:
-    case Op::kLe:
-    case Op::kGt:
-    case Op::kGe:
-    case Op::kEq:
-    case Op::kNe:
-    case Op::kAnd:
-    case Op::kOr:
-      return 2;
-    case Op::kSelect:
-      return 3;
-    default:
-      return 1;  // functions of one argument and kNot
-  }
-}
-
-inline bool IsComparison(Op op) { return op >= Op::kLt && op <= Op::kNe; }
 
 // a ** b.  Squares and reciprocals are computed exactly (x*x, 1/x).
 inline double PowValue(double a, double b) {

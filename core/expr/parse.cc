@@ -2,7 +2,9 @@
 //
 // Design.  A small lexer produces one token at a time (with its byte offset);
 // the parser has one function per precedence level, lowest first, matching
-// Tcl 8.6's expr:
+// Tcl 8.6's expr (the infix levels from or to relation are one function that
+// reads the operators and their precedence from the operator table, ops.h, as
+// do function calls):
 //   ternary  := or ('?' ternary ':' ternary)?          right associative
 //   or       := and ('||' and)*
 //   and      := equality ('&&' equality)*
@@ -28,9 +30,10 @@
 #include <cmath>
 #include <numbers>
 #include <string>
+#include <utility>
 
 #include "core/expr/expr.h"
-#include "core/expr/internal.h"
+#include "core/expr/ops.h"
 
 namespace asgard::expr {
 namespace {
@@ -41,6 +44,7 @@ enum class Tok {
   kEnd,
   kNumber,
   kName,
+  kOperator,  // an infix or prefix operation of the operator table (Token::op)
   kLParen,
   kRParen,
   kComma,
@@ -50,15 +54,6 @@ enum class Tok {
   kSlash,
   kPercent,
   kPower,
-  kNot,
-  kLt,
-  kLe,
-  kGt,
-  kGe,
-  kEq,
-  kNe,
-  kAnd,
-  kOr,
   kQuestion,
   kColon,
 };
@@ -68,29 +63,31 @@ struct Token {
   int offset = 0;
   std::string_view text;
   double number = 0.0;
+  Op op = Op::kConst;  // kOperator
 };
 
-struct FunctionInfo {
-  const char* name;
-  Op op;
-  int arity;  // -1: one or more (min, max)
+// Symbols that are not an operation of their own: arithmetic (a - b, a / b
+// and a % b are built from sums, products and powers) and punctuation.
+struct Symbol {
+  std::string_view text;
+  Tok kind;
 };
 
-constexpr FunctionInfo kFunctions[] = {
-    {"sin", Op::kSin, 1},     {"cos", Op::kCos, 1},   {"tan", Op::kTan, 1},
-    {"asin", Op::kAsin, 1},   {"acos", Op::kAcos, 1}, {"atan", Op::kAtan, 1},
-    {"atan2", Op::kAtan2, 2}, {"sinh", Op::kSinh, 1}, {"cosh", Op::kCosh, 1},
-    {"tanh", Op::kTanh, 1},   {"exp", Op::kExp, 1},   {"log", Op::kLog, 1},
-    {"sqrt", Op::kSqrt, 1},   {"abs", Op::kAbs, 1},   {"floor", Op::kFloor, 1},
-    {"ceil", Op::kCeil, 1},   {"sign", Op::kSign, 1}, {"min", Op::kMin, -1},
-    {"max", Op::kMax, -1},    {"fmod", Op::kFmod, 2}, {"hypot", Op::kHypot, 2},
-    {"pow", Op::kPow, 2},
+constexpr Symbol kSymbols[] = {
+    {"(", Tok::kLParen},  {")", Tok::kRParen},   {",", Tok::kComma},  {"+", Tok::kPlus},
+    {"-", Tok::kMinus},   {"*", Tok::kStar},     {"**", Tok::kPower}, {"/", Tok::kSlash},
+    {"%", Tok::kPercent}, {"?", Tok::kQuestion}, {":", Tok::kColon},
 };
 
-const FunctionInfo* FindFunction(std::string_view name) {
-  for (const FunctionInfo& f : kFunctions)
-    if (name == f.name) return &f;
-  return nullptr;
+// What a character that starts no symbol was probably meant to be.
+constexpr std::pair<char, const char*> kHints[] = {
+    {'=', " (use == to compare)"},
+    {'&', " (use &&)"},
+    {'|', " (use ||)"},
+};
+
+bool IsOperatorSymbol(const OpInfo& info) {
+  return info.notation == Notation::kInfix || info.notation == Notation::kPrefix;
 }
 
 bool IsIdentStart(char c) { return std::isalpha(static_cast<unsigned char>(c)) || c == '_'; }
@@ -161,76 +158,36 @@ class Parser {
       tok_.kind = Tok::kName;
       len = j - i;
     } else {
-      auto two = [&](char second, Tok both, Tok single) {
-        if (next == second) {
-          len = 2;
-          tok_.kind = both;
-        } else {
-          tok_.kind = single;
-        }
-      };
-      switch (c) {
-        case '(':
-          tok_.kind = Tok::kLParen;
-          break;
-        case ')':
-          tok_.kind = Tok::kRParen;
-          break;
-        case ',':
-          tok_.kind = Tok::kComma;
-          break;
-        case '+':
-          tok_.kind = Tok::kPlus;
-          break;
-        case '-':
-          tok_.kind = Tok::kMinus;
-          break;
-        case '/':
-          tok_.kind = Tok::kSlash;
-          break;
-        case '%':
-          tok_.kind = Tok::kPercent;
-          break;
-        case '?':
-          tok_.kind = Tok::kQuestion;
-          break;
-        case ':':
-          tok_.kind = Tok::kColon;
-          break;
-        case '*':
-          two('*', Tok::kPower, Tok::kStar);
-          break;
-        case '<':
-          two('=', Tok::kLe, Tok::kLt);
-          break;
-        case '>':
-          two('=', Tok::kGe, Tok::kGt);
-          break;
-        case '!':
-          two('=', Tok::kNe, Tok::kNot);
-          break;
-        case '=':
-          if (next != '=')
-            throw ParseError("unexpected character '=' (use == to compare)", tok_.offset);
-          len = 2;
-          tok_.kind = Tok::kEq;
-          break;
-        case '&':
-          if (next != '&') throw ParseError("unexpected character '&' (use &&)", tok_.offset);
-          len = 2;
-          tok_.kind = Tok::kAnd;
-          break;
-        case '|':
-          if (next != '|') throw ParseError("unexpected character '|' (use ||)", tok_.offset);
-          len = 2;
-          tok_.kind = Tok::kOr;
-          break;
-        default:
-          throw ParseError("unexpected character " + Describe(text_, tok_.offset), tok_.offset);
-      }
+      len = LexSymbol(i);
     }
     tok_.text = text_.substr(i, len);
     pos_ = i + len;
+  }
+
+  // Lexes the longest operator or punctuation symbol starting at i; returns
+  // its length.
+  size_t LexSymbol(size_t i) {
+    const std::string_view rest = text_.substr(i);
+    size_t len = 0;
+    for (const Symbol& s : kSymbols) {
+      if (s.text.size() > len && rest.starts_with(s.text)) {
+        len = s.text.size();
+        tok_.kind = s.kind;
+      }
+    }
+    for (const OpInfo& info : kOps) {
+      const std::string_view name = info.name;
+      if (IsOperatorSymbol(info) && name.size() > len && rest.starts_with(name)) {
+        len = name.size();
+        tok_.kind = Tok::kOperator;
+        tok_.op = info.op;
+      }
+    }
+    if (len > 0) return len;
+    std::string hint;
+    for (const auto& [c, text] : kHints)
+      if (rest[0] == c) hint = text;
+    throw ParseError("unexpected character " + Describe(text_, tok_.offset) + hint, tok_.offset);
   }
 
   // Lexes the number starting at i; returns its length.
@@ -291,7 +248,7 @@ class Parser {
   // ---- grammar ----
   NodeId Ternary() {
     DepthGuard guard(*this);
-    const NodeId cond = Or();
+    const NodeId cond = Infix(kOrPrec);
     if (tok_.kind != Tok::kQuestion) return cond;
     Advance();
     const NodeId a = Ternary();
@@ -300,57 +257,18 @@ class Parser {
     return pool_.Select(cond, a, b);
   }
 
-  NodeId Or() {
-    NodeId lhs = And();
-    while (tok_.kind == Tok::kOr) {
+  // Left-associative infix operations of the operator table at precedence
+  // `prec` (kOrPrec up to kRelational) over the levels above.
+  NodeId Infix(int prec) {
+    if (prec >= kAdditive) return Additive();
+    NodeId lhs = Infix(prec + 1);
+    while (tok_.kind == Tok::kOperator && Info(tok_.op).notation == Notation::kInfix &&
+           Info(tok_.op).prec == prec) {
+      const Op op = tok_.op;
       Advance();
-      lhs = Binary(Op::kOr, lhs, And());
+      lhs = Binary(op, lhs, Infix(prec + 1));
     }
     return lhs;
-  }
-
-  NodeId And() {
-    NodeId lhs = Equality();
-    while (tok_.kind == Tok::kAnd) {
-      Advance();
-      lhs = Binary(Op::kAnd, lhs, Equality());
-    }
-    return lhs;
-  }
-
-  NodeId Equality() {
-    NodeId lhs = Relation();
-    while (tok_.kind == Tok::kEq || tok_.kind == Tok::kNe) {
-      const Op op = tok_.kind == Tok::kEq ? Op::kEq : Op::kNe;
-      Advance();
-      lhs = Binary(op, lhs, Relation());
-    }
-    return lhs;
-  }
-
-  NodeId Relation() {
-    NodeId lhs = Additive();
-    for (;;) {
-      Op op;
-      switch (tok_.kind) {
-        case Tok::kLt:
-          op = Op::kLt;
-          break;
-        case Tok::kLe:
-          op = Op::kLe;
-          break;
-        case Tok::kGt:
-          op = Op::kGt;
-          break;
-        case Tok::kGe:
-          op = Op::kGe;
-          break;
-        default:
-          return lhs;
-      }
-      Advance();
-      lhs = Binary(op, lhs, Additive());
-    }
   }
 
   NodeId Additive() {
@@ -405,10 +323,12 @@ class Parser {
         Advance();
         return Unary();
       }
-      case Tok::kNot: {
+      case Tok::kOperator: {
+        if (Info(tok_.op).notation != Notation::kPrefix) return Primary();
         DepthGuard guard(*this);
+        const Op op = tok_.op;
         Advance();
-        return pool_.Apply(Op::kNot, std::array<NodeId, 1>{Unary()});
+        return pool_.Apply(op, std::array<NodeId, 1>{Unary()});
       }
       default:
         return Primary();
@@ -452,7 +372,7 @@ class Parser {
   }
 
   NodeId Call(const Token& name) {
-    const FunctionInfo* f = FindFunction(name.text);
+    const OpInfo* f = FindCallable(name.text);
     if (!f) throw ParseError("unknown function '" + std::string(name.text) + "'", name.offset);
     Advance();  // '(' (the arguments' Ternary calls count the nesting)
     std::vector<NodeId> args;
@@ -465,7 +385,7 @@ class Parser {
     }
     Expect(Tok::kRParen, "')'");
     const std::string fname(f->name);
-    if (f->arity == -1) {
+    if (f->Has(kVariadic)) {
       if (args.empty())
         throw ParseError("function '" + fname + "' takes at least 1 argument", name.offset);
       NodeId acc = args[0];

@@ -63,89 +63,45 @@ bool SameNode(const Node& a, const Node& b) {
 
 bool IsInteger(double v) { return std::isfinite(v) && v == std::floor(v); }
 
+// A term coef * base of a sum, or a factor base ** exponent of a product.
+struct Weighted {
+  NodeId base;
+  double weight;
+};
+
+// Sorts `items` by base (stably), adds up the weights of equal bases (left to
+// right) and drops the bases whose weight comes to 0.
+void MergeByBase(std::vector<Weighted>& items) {
+  std::stable_sort(items.begin(), items.end(),
+                   [](const Weighted& x, const Weighted& y) { return x.base < y.base; });
+  size_t out = 0;
+  for (size_t i = 0; i < items.size();) {
+    Weighted merged = items[i++];
+    while (i < items.size() && items[i].base == merged.base) merged.weight += items[i++].weight;
+    if (merged.weight != 0.0) items[out++] = merged;
+  }
+  items.resize(out);
+}
+
+// Calls add(x) for each of `ids`, and for the operands of those that are
+// `flat` nodes instead of the node itself.  add may grow the pool.
+template <class Add>
+void Flatten(const std::vector<Node>& nodes, std::span<const NodeId> ids, Op flat, const char* who,
+             Add&& add) {
+  for (NodeId id : ids) {
+    if (id >= nodes.size())
+      throw std::invalid_argument(std::string("expr::Pool::") + who + ": id out of range");
+    if (nodes[id].op != flat) {
+      add(id);
+      continue;
+    }
+    for (size_t k = 0; k < nodes[id].args.size(); ++k) add(nodes[id].args[k]);
+  }
+}
+
 }  // namespace
 
-const char* OpName(Op op) {
-  switch (op) {
-    case Op::kConst:
-      return "const";
-    case Op::kTime:
-      return "t";
-    case Op::kVar:
-      return "var";
-    case Op::kExtern:
-      return "extern";
-    case Op::kAdd:
-      return "add";
-    case Op::kMul:
-      return "mul";
-    case Op::kPow:
-      return "pow";
-    case Op::kSin:
-      return "sin";
-    case Op::kCos:
-      return "cos";
-    case Op::kTan:
-      return "tan";
-    case Op::kAsin:
-      return "asin";
-    case Op::kAcos:
-      return "acos";
-    case Op::kAtan:
-      return "atan";
-    case Op::kSinh:
-      return "sinh";
-    case Op::kCosh:
-      return "cosh";
-    case Op::kTanh:
-      return "tanh";
-    case Op::kExp:
-      return "exp";
-    case Op::kLog:
-      return "log";
-    case Op::kSqrt:
-      return "sqrt";
-    case Op::kAbs:
-      return "abs";
-    case Op::kFloor:
-      return "floor";
-    case Op::kCeil:
-      return "ceil";
-    case Op::kSign:
-      return "sign";
-    case Op::kAtan2:
-      return "atan2";
-    case Op::kMin:
-      return "min";
-    case Op::kMax:
-      return "max";
-    case Op::kFmod:
-      return "fmod";
-    case Op::kHypot:
-      return "hypot";
-    case Op::kLt:
-      return "<";
-    case Op::kLe:
-      return "<=";
-    case Op::kGt:
-      return ">";
-    case Op::kGe:
-      return ">=";
-    case Op::kEq:
-      return "==";
-    case Op::kNe:
-      return "!=";
-    case Op::kAnd:
-      return "&&";
-    case Op::kOr:
-      return "||";
-    case Op::kNot:
-      return "!";
-    case Op::kSelect:
-      return "select";
-  }
-  return "?";
-}
+const char* OpName(Op op) { return Info(op).name; }
 
 Pool::Pool() : impl_(std::make_unique<Impl>()) { impl_->table.assign(256, Impl::kEmpty); }
 Pool::~Pool() = default;
@@ -257,13 +213,9 @@ NodeId Pool::Div(NodeId a, NodeId b) {
 
 NodeId Pool::Sum(std::span<const NodeId> terms) {
   double constant = 0.0;
-  struct Term {
-    NodeId base;
-    double coef;
-  };
-  std::vector<Term> items;
+  std::vector<Weighted> items;  // coefficient * base
   items.reserve(terms.size() + 4);
-  auto add_term = [&](NodeId x) {
+  Flatten(nodes_, terms, Op::kAdd, "Sum", [&](NodeId x) {
     const Node& n = nodes_[x];
     if (n.op == Op::kConst) {
       constant += n.value;
@@ -280,33 +232,16 @@ NodeId Pool::Sum(std::span<const NodeId> terms) {
     } else {
       items.push_back({x, 1.0});
     }
-  };
-  for (NodeId t : terms) {
-    if (t >= nodes_.size()) throw std::invalid_argument("expr::Pool::Sum: id out of range");
-    if (nodes_[t].op == Op::kAdd) {
-      const std::vector<NodeId> inner = nodes_[t].args;
-      for (NodeId u : inner) add_term(u);
-    } else {
-      add_term(t);
-    }
-  }
+  });
   if (std::isnan(constant)) return Const(constant);
-  std::stable_sort(items.begin(), items.end(),
-                   [](const Term& x, const Term& y) { return x.base < y.base; });
-  size_t out = 0;
-  for (size_t i = 0; i < items.size();) {
-    Term merged = items[i++];
-    while (i < items.size() && items[i].base == merged.base) merged.coef += items[i++].coef;
-    if (merged.coef != 0.0) items[out++] = merged;
-  }
-  items.resize(out);
+  MergeByBase(items);
   if (items.empty()) return Const(constant);
 
   std::vector<NodeId> args;
   args.reserve(items.size() + 1);
   if (constant != 0.0) args.push_back(Const(constant));
-  for (const Term& term : items) {
-    if (term.coef == 1.0) {
+  for (const Weighted& term : items) {
+    if (term.weight == 1.0) {
       args.push_back(term.base);
       continue;
     }
@@ -314,7 +249,7 @@ NodeId Pool::Sum(std::span<const NodeId> terms) {
     // constant, a sum, or a product with a coefficient).
     Node m;
     m.op = Op::kMul;
-    m.args.push_back(Const(term.coef));
+    m.args.push_back(Const(term.weight));
     if (nodes_[term.base].op == Op::kMul) {
       const std::vector<NodeId>& fa = nodes_[term.base].args;
       m.args.insert(m.args.end(), fa.begin(), fa.end());
@@ -332,13 +267,9 @@ NodeId Pool::Sum(std::span<const NodeId> terms) {
 
 NodeId Pool::Product(std::span<const NodeId> factors) {
   double coef = 1.0;
-  struct Factor {
-    NodeId base;
-    double exponent;
-  };
-  std::vector<Factor> items;
+  std::vector<Weighted> items;  // base ** exponent
   items.reserve(factors.size() + 4);
-  auto add_factor = [&](NodeId x) {
+  Flatten(nodes_, factors, Op::kMul, "Product", [&](NodeId x) {  // does not intern
     const Node& n = nodes_[x];
     if (n.op == Op::kConst) {
       coef *= n.value;
@@ -347,25 +278,13 @@ NodeId Pool::Product(std::span<const NodeId> factors) {
     } else {
       items.push_back({x, 1.0});
     }
-  };
-  for (NodeId f : factors) {
-    if (f >= nodes_.size()) throw std::invalid_argument("expr::Pool::Product: id out of range");
-    if (nodes_[f].op == Op::kMul) {
-      for (NodeId u : nodes_[f].args) add_factor(u);  // add_factor does not intern
-    } else {
-      add_factor(f);
-    }
-  }
+  });
   if (coef == 0.0 || std::isnan(coef)) return Const(coef);
-  std::stable_sort(items.begin(), items.end(),
-                   [](const Factor& x, const Factor& y) { return x.base < y.base; });
+  MergeByBase(items);
   std::vector<NodeId> built;
   built.reserve(items.size() + 1);
-  for (size_t i = 0; i < items.size();) {
-    Factor merged = items[i++];
-    while (i < items.size() && items[i].base == merged.base) merged.exponent += items[i++].exponent;
-    if (merged.exponent == 0.0) continue;
-    NodeId f = merged.exponent == 1.0 ? merged.base : Pow(merged.base, Const(merged.exponent));
+  for (const Weighted& item : items) {
+    NodeId f = item.weight == 1.0 ? item.base : Pow(item.base, Const(item.weight));
     if (nodes_[f].op == Op::kConst) {  // a collapsed power such as (x**2)**0
       coef *= nodes_[f].value;
       continue;
@@ -454,7 +373,8 @@ NodeId Pool::Select(NodeId cond, NodeId a, NodeId b) {
 }
 
 NodeId Pool::Apply(Op op, std::span<const NodeId> args) {
-  const int arity = internal::Arity(op);
+  const OpInfo& info = Info(op);
+  const int arity = info.arity;
   if (arity == 0)
     throw std::invalid_argument("expr::Pool::Apply: leaf op " + std::string(OpName(op)));
   if (arity == -1) return op == Op::kAdd ? Sum(args) : Product(args);
@@ -473,11 +393,11 @@ NodeId Pool::Apply(Op op, std::span<const NodeId> args) {
                      ? internal::UnaryValue(op, nodes_[args[0]].value)
                      : internal::BinaryValue(op, nodes_[args[0]].value, nodes_[args[1]].value));
   }
+  if (info.Has(kIdempotent)) {
+    if (arity == 1 && nodes_[args[0]].op == op) return args[0];  // f(f(x)) = f(x)
+    if (arity == 2 && args[0] == args[1]) return args[0];        // x op x = x
+  }
   switch (op) {
-    case Op::kMin:
-    case Op::kMax:
-      if (args[0] == args[1]) return args[0];
-      break;
     case Op::kAnd:
       for (NodeId a : args)
         if (auto v = ConstValue(a); v && *v == 0.0) return Const(0.0);
@@ -490,18 +410,10 @@ NodeId Pool::Apply(Op op, std::span<const NodeId> args) {
       // !!c == c when c is already 0 or 1.
       const Node& inner = nodes_[args[0]];
       if (inner.op == Op::kNot) {
-        const Op o = nodes_[inner.args[0]].op;
-        if (internal::IsComparison(o) || o == Op::kAnd || o == Op::kOr || o == Op::kNot)
-          return inner.args[0];
+        if (Info(nodes_[inner.args[0]].op).Has(kBoolean)) return inner.args[0];
       }
       break;
     }
-    case Op::kAbs:
-    case Op::kFloor:
-    case Op::kCeil:
-    case Op::kSign:
-      if (nodes_[args[0]].op == op) return args[0];  // idempotent
-      break;
     default:
       break;
   }

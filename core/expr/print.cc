@@ -19,23 +19,10 @@
 #include <string>
 
 #include "core/expr/expr.h"
-#include "core/expr/internal.h"
+#include "core/expr/ops.h"
 
 namespace asgard::expr {
 namespace {
-
-enum Prec : int {
-  kTernary = 1,
-  kOrPrec = 2,
-  kAndPrec = 3,
-  kEquality = 4,
-  kRelational = 5,
-  kAdditive = 6,
-  kMultiplicative = 7,
-  kPower = 8,
-  kUnary = 9,
-  kPrimary = 10,
-};
 
 std::string NumberText(double v) {
   if (std::isnan(v)) return "(0/0)";
@@ -68,43 +55,6 @@ bool IsNegativeTerm(const Pool& pool, NodeId id) {
   return false;
 }
 
-const char* InfixText(Op op) {
-  switch (op) {
-    case Op::kLt:
-      return " < ";
-    case Op::kLe:
-      return " <= ";
-    case Op::kGt:
-      return " > ";
-    case Op::kGe:
-      return " >= ";
-    case Op::kEq:
-      return " == ";
-    case Op::kNe:
-      return " != ";
-    case Op::kAnd:
-      return " && ";
-    case Op::kOr:
-      return " || ";
-    default:
-      return " ? ";
-  }
-}
-
-int InfixPrec(Op op) {
-  switch (op) {
-    case Op::kEq:
-    case Op::kNe:
-      return kEquality;
-    case Op::kAnd:
-      return kAndPrec;
-    case Op::kOr:
-      return kOrPrec;
-    default:
-      return kRelational;
-  }
-}
-
 class Printer {
  public:
   Printer(const Pool& pool, const std::function<std::string(int)>& var_name)
@@ -112,7 +62,7 @@ class Printer {
 
   std::string Print(NodeId root) {
     std::string out;
-    std::vector<Piece> stack{Sub(root, 0)};
+    std::vector<Piece> stack{Sub(root, kNoPrec)};
     std::vector<Piece> pieces;
     while (!stack.empty()) {
       Piece p = std::move(stack.back());
@@ -141,28 +91,17 @@ class Printer {
       out.push_back(Text(NumberText(v)));
       return (std::isnan(v) || !(v < 0)) ? kPrimary : kUnary;
     }
-    if (n.op == Op::kMul) return FormatProduct(n, negate, out);
-    if (negate) {
+    const OpInfo& info = Info(n.op);
+    if (negate && info.notation != Notation::kProduct) {  // products print their sign
       out.push_back(Text("-"));
       out.push_back(Sub(id, kUnary));
       return kUnary;
     }
-    switch (n.op) {
-      case Op::kTime:
-        out.push_back(Text("t"));
+    switch (info.notation) {
+      case Notation::kLeaf:
+        out.push_back(Text(LeafText(n)));
         return kPrimary;
-      case Op::kVar:
-        // (append, not "x" + string: GCC 12 -O3 warns falsely, -Wrestrict)
-        out.push_back(Text(var_name_ ? var_name_(n.index)
-                                     : std::string("x").append(std::to_string(n.index))));
-        return kPrimary;
-      case Op::kExtern: {
-        std::string s = std::string("ext").append(std::to_string(n.index));
-        if (n.order != 0) s.append(".d").append(std::to_string(n.order));
-        out.push_back(Text(std::move(s)));
-        return kPrimary;
-      }
-      case Op::kAdd: {
+      case Notation::kSum: {
         // Constant (first in canonical order) goes last.
         std::vector<NodeId> terms(n.args.begin(), n.args.end());
         if (pool_.IsConst(terms.front())) {
@@ -177,7 +116,9 @@ class Printer {
         }
         return kAdditive;
       }
-      case Op::kPow: {
+      case Notation::kProduct:
+        return FormatProduct(n, negate, out);
+      case Notation::kPower: {
         auto k = pool_.ConstValue(n.args[1]);
         if (k && *k < 0 && *k == std::floor(*k) && std::isfinite(*k)) {
           out.push_back(Text("1/"));
@@ -189,41 +130,43 @@ class Printer {
         out.push_back(Sub(n.args[1], kPower));
         return kPower;
       }
-      case Op::kSelect:
+      case Notation::kSelect:
         out.push_back(Sub(n.args[0], kOrPrec));
         out.push_back(Text(" ? "));
-        out.push_back(Sub(n.args[1], 0));
+        out.push_back(Sub(n.args[1], kNoPrec));
         out.push_back(Text(" : "));
         out.push_back(Sub(n.args[2], kTernary));
         return kTernary;
-      case Op::kNot:
-        out.push_back(Text("!"));
-        out.push_back(Sub(n.args[0], kUnary));
-        return kUnary;
-      case Op::kLt:
-      case Op::kLe:
-      case Op::kGt:
-      case Op::kGe:
-      case Op::kEq:
-      case Op::kNe:
-      case Op::kAnd:
-      case Op::kOr: {
-        const int prec = InfixPrec(n.op);
-        out.push_back(Sub(n.args[0], prec));
-        out.push_back(Text(InfixText(n.op)));
-        out.push_back(Sub(n.args[1], prec + 1));
-        return prec;
-      }
-      default: {  // function call
-        out.push_back(Text(std::string(OpName(n.op)) + "("));
-        for (size_t i = 0; i < n.args.size(); ++i) {
-          if (i > 0) out.push_back(Text(", "));
-          out.push_back(Sub(n.args[i], 0));
-        }
-        out.push_back(Text(")"));
-        return kPrimary;
-      }
+      case Notation::kPrefix:
+        out.push_back(Text(info.name));
+        out.push_back(Sub(n.args[0], info.prec));
+        return info.prec;
+      case Notation::kInfix:
+        out.push_back(Sub(n.args[0], info.prec));
+        out.push_back(Text(std::string(" ").append(info.name).append(" ")));
+        out.push_back(Sub(n.args[1], info.prec + 1));
+        return info.prec;
+      case Notation::kCall:
+        break;
     }
+    out.push_back(Text(std::string(info.name) + "("));
+    for (size_t i = 0; i < n.args.size(); ++i) {
+      if (i > 0) out.push_back(Text(", "));
+      out.push_back(Sub(n.args[i], kNoPrec));
+    }
+    out.push_back(Text(")"));
+    return kPrimary;
+  }
+
+  // t, a variable or an external function.
+  std::string LeafText(const Node& n) const {
+    if (n.op == Op::kTime) return "t";
+    // (append, not "x" + string: GCC 12 -O3 warns falsely, -Wrestrict)
+    if (n.op == Op::kVar)
+      return var_name_ ? var_name_(n.index) : std::string("x").append(std::to_string(n.index));
+    std::string s = std::string("ext").append(std::to_string(n.index));
+    if (n.order != 0) s.append(".d").append(std::to_string(n.order));
+    return s;
   }
 
   // base ** exponent with a positive numeric exponent, as an operand of * or /.

@@ -216,11 +216,17 @@ void LinkCommand(EvalContext& ctx, const Invocation& inv, std::string&) {
 
 namespace {
 
+// A force or torque: the options both take (-body, -x/-y/-z, -offset).
 template <typename T>
-void ReadVectorExpression(const Options& o, T& element) {
+T VectorElement(const Invocation& inv, const Options& o, const std::string& body) {
+  T element;
+  FillBase(inv, element);
+  element.body = body;
   const char* axes[3] = {"x", "y", "z"};
   for (int i = 0; i < 3; ++i) element.components[i] = o.Expression(axes[i]).value_or("0");
   element.offset = o.Vector("offset");
+  RecordOptions(inv, o, element);
+  return element;
 }
 
 }  // namespace
@@ -232,20 +238,11 @@ void ForceCommand(EvalContext& ctx, const Invocation& inv, std::string&) {
   bool gravitational = o.Bool("gravitational").value_or(false);
   if (o.Bool("torque").value_or(false)) {
     if (gravitational) o.Fail(*o.Get("gravitational"), "cannot be used with -torque 1");
-    scene::Torque t;
-    FillBase(inv, t);
-    t.body = *body;
-    ReadVectorExpression(o, t);
-    RecordOptions(inv, o, t);
-    ctx.scene.torques.push_back(std::move(t));
+    ctx.scene.torques.push_back(VectorElement<scene::Torque>(inv, o, *body));
     return;
   }
-  scene::Force f;
-  FillBase(inv, f);
-  f.body = *body;
-  ReadVectorExpression(o, f);
+  scene::Force f = VectorElement<scene::Force>(inv, o, *body);
   f.gravitational = gravitational;
-  RecordOptions(inv, o, f);
   ctx.scene.forces.push_back(std::move(f));
 }
 
@@ -253,12 +250,7 @@ void TorqueCommand(EvalContext& ctx, const Invocation& inv, std::string&) {
   Options o(inv, 1, {"body", "x", "y", "z", "offset"});
   auto body = o.String("body");
   if (!body) throw ElementError{"torque: missing required option -body", -1};
-  scene::Torque t;
-  FillBase(inv, t);
-  t.body = *body;
-  ReadVectorExpression(o, t);
-  RecordOptions(inv, o, t);
-  ctx.scene.torques.push_back(std::move(t));
+  ctx.scene.torques.push_back(VectorElement<scene::Torque>(inv, o, *body));
 }
 
 void TrajectoryCommand(EvalContext& ctx, const Invocation& inv, std::string& name) {

@@ -217,20 +217,43 @@ TEST(Distance, DegenerateSegmentAndPointPolytopesGiveFiniteExactDistances) {
   ExpectVector(r.normal, {0, 0, -1}, 1e-14);
 }
 
-TEST(Distance, RandomPolytopesMatchABruteForceOverFeaturePairs) {
-  std::mt19937_64 rng(42);
-  std::uniform_real_distribution<double> uniform(0.0, 1.0);
-  std::normal_distribution<double> normal(0.0, 1.0);
-  int compared = 0;
-  for (int trial = 0; trial < 300; ++trial) {
-    std::uniform_int_distribution<int> count(5, 40);
-    const geometry::ConvexHull ha = RandomHull(rng, count(rng), 1.0);
-    const geometry::ConvexHull hb = RandomHull(rng, count(rng), 0.7);
+// A pair of random polytopes: a (5 to max_vertices points, size 1) at a
+// random pose, b (size b_size) turned at random with its centre min_gap + 2u
+// away from a's in a random direction, u uniform in [0, 1).
+struct RandomPair {
+  geometry::ConvexHull ha, hb;
+  Piece a, b;
+  Pose pa, pb;
+};
+
+class RandomPairs {
+ public:
+  explicit RandomPairs(uint64_t seed) : rng_(seed) {}
+
+  RandomPair Next(int max_vertices, double b_size, double min_gap) {
+    std::uniform_int_distribution<int> count(5, max_vertices);
+    const geometry::ConvexHull ha = RandomHull(rng_, count(rng_), 1.0);
+    const geometry::ConvexHull hb = RandomHull(rng_, count(rng_), b_size);
     const Piece a = PieceFromHull(ha);
     const Piece b = PieceFromHull(hb);
-    const Pose pa = MakePose({normal(rng), normal(rng), normal(rng)}, RandomRotation(rng));
-    const Eigen::Vector3d dir = Eigen::Vector3d(normal(rng), normal(rng), normal(rng)).normalized();
-    const Pose pb = MakePose(pa.p + (1.2 + 2.0 * uniform(rng)) * dir, RandomRotation(rng));
+    const Pose pa = MakePose({normal_(rng_), normal_(rng_), normal_(rng_)}, RandomRotation(rng_));
+    const Eigen::Vector3d dir =
+        Eigen::Vector3d(normal_(rng_), normal_(rng_), normal_(rng_)).normalized();
+    const Pose pb = MakePose(pa.p + (min_gap + 2.0 * uniform_(rng_)) * dir, RandomRotation(rng_));
+    return {ha, hb, a, b, pa, pb};
+  }
+
+ private:
+  std::mt19937_64 rng_;
+  std::uniform_real_distribution<double> uniform_{0.0, 1.0};
+  std::normal_distribution<double> normal_{0.0, 1.0};
+};
+
+TEST(Distance, RandomPolytopesMatchABruteForceOverFeaturePairs) {
+  RandomPairs pairs(42);
+  int compared = 0;
+  for (int trial = 0; trial < 300; ++trial) {
+    const auto [ha, hb, a, b, pa, pb] = pairs.Next(40, 0.7, 1.2);
     const double reference = testing::BruteForceDistance(ha, pa, hb, pb);
     const DistanceResult r = Distance(a, pa, b, pb);
     if (reference < 1e-6) continue;
@@ -295,19 +318,10 @@ TEST(Distance, NearlyTouchingPolytopesMatchTheBruteForce) {
 }
 
 TEST(Distance, OverlapAgreesWithMprAndSeparatingAxesOnRandomPairs) {
-  std::mt19937_64 rng(1234);
-  std::uniform_real_distribution<double> uniform(0.0, 1.0);
-  std::normal_distribution<double> normal(0.0, 1.0);
+  RandomPairs pairs(1234);
   int overlapping = 0, separated = 0, near = 0;
   for (int trial = 0; trial < 1000; ++trial) {
-    std::uniform_int_distribution<int> count(5, 30);
-    const geometry::ConvexHull ha = RandomHull(rng, count(rng), 1.0);
-    const geometry::ConvexHull hb = RandomHull(rng, count(rng), 0.8);
-    const Piece a = PieceFromHull(ha);
-    const Piece b = PieceFromHull(hb);
-    const Pose pa = MakePose({normal(rng), normal(rng), normal(rng)}, RandomRotation(rng));
-    const Eigen::Vector3d dir = Eigen::Vector3d(normal(rng), normal(rng), normal(rng)).normalized();
-    const Pose pb = MakePose(pa.p + 2.0 * uniform(rng) * dir, RandomRotation(rng));
+    const auto [ha, hb, a, b, pa, pb] = pairs.Next(30, 0.8, 0.0);
     const DistanceResult r = Distance(a, pa, b, pb);
     const std::optional<bool> mpr = OverlapMpr(a, pa, b, pb);
     const double sat = testing::SatPenetration(ha, pa, hb, pb);

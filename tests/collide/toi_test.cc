@@ -4,6 +4,9 @@
 #include <cmath>
 #include <cstdio>
 #include <numbers>
+#include <ostream>
+#include <string>
+#include <vector>
 
 #include "tests/collide/shapes.h"
 
@@ -76,16 +79,38 @@ TEST(TimeOfImpact, ApproachingSpheresMeetAtTwoSeconds) {
   EXPECT_LT(impact->iterations, 60);
 }
 
-TEST(TimeOfImpact, SpinningBoxReachesAWallWhenAFineReferenceSearchSaysSo) {
-  const Piece box = Box({0.5, 0.5, 0.5});
+// A box moving along x at unit speed while spinning about z at `omega`,
+// towards a static wall at x = `wall_x`: the impact must land just before the
+// first contact that a fine reference search (step `reference_step`) finds in
+// [0, t1].
+struct SpinningBoxCase {
+  const char* name;
+  Eigen::Vector3d box_half_extents;
+  double omega;
+  double wall_x;
+  double t1;
+  double reference_step;
+  int more_queries_than;  // the search must take more distance queries (-1: not checked)
+};
+
+class SpinningBoxAgainstAWall : public ::testing::TestWithParam<SpinningBoxCase> {};
+
+void PrintTo(const SpinningBoxCase& c, std::ostream* os) { *os << c.name; }
+
+TEST_P(SpinningBoxAgainstAWall, LandsJustBeforeTheReferenceContact) {
+  const SpinningBoxCase& c = GetParam();
+  const Piece box = Box(c.box_half_extents);
   const Piece wall = Box({0.05, 2, 2});
-  const Motion mbox = Spinning({0, 0, 0}, {1, 0, 0}, 5.0);
-  const Motion mwall = Static({3, 0, 0});
+  const Motion mbox = Spinning({0, 0, 0}, {1, 0, 0}, c.omega);
+  const Motion mwall = Static({c.wall_x, 0, 0});
   const double separation = 1e-9;
-  const auto impact = TimeOfImpact(box, mbox, wall, mwall, 0.0, 5.0, separation);
+  const auto impact = TimeOfImpact(box, mbox, wall, mwall, 0.0, c.t1, separation);
   ASSERT_TRUE(impact.has_value());
   ExpectLanding(*impact, separation);
-  const double reference = ReferenceContact(box, mbox, wall, mwall, 0.0, 5.0, 1e-4);
+  if (c.more_queries_than >= 0) {
+    EXPECT_GT(impact->iterations, c.more_queries_than);
+  }
+  const double reference = ReferenceContact(box, mbox, wall, mwall, 0.0, c.t1, c.reference_step);
   ASSERT_TRUE(std::isfinite(reference));
   EXPECT_NEAR(impact->time, reference, 1e-6);
   EXPECT_LE(impact->time, reference);
@@ -93,23 +118,21 @@ TEST(TimeOfImpact, SpinningBoxReachesAWallWhenAFineReferenceSearchSaysSo) {
               reference, impact->iterations);
 }
 
-TEST(TimeOfImpact, FastSpinLeavesAdvancementToTheFallbackAndStillLandsBeforeContact) {
-  const Piece box = Box({0.5, 0.3, 0.5});
-  const Piece wall = Box({0.05, 2, 2});
-  const Motion mbox = Spinning({0, 0, 0}, {1, 0, 0}, 80.0);
-  const Motion mwall = Static({2, 0, 0});
-  const double separation = 1e-9;
-  const auto impact = TimeOfImpact(box, mbox, wall, mwall, 0.0, 3.0, separation);
-  ASSERT_TRUE(impact.has_value());
-  ExpectLanding(*impact, separation);
-  EXPECT_GT(impact->iterations, 200);
-  const double reference = ReferenceContact(box, mbox, wall, mwall, 0.0, 3.0, 1e-5);
-  ASSERT_TRUE(std::isfinite(reference));
-  EXPECT_NEAR(impact->time, reference, 1e-6);
-  EXPECT_LE(impact->time, reference);
-  std::printf("impact at %.12f (reference %.12f) after %d distance queries\n", impact->time,
-              reference, impact->iterations);
+std::vector<SpinningBoxCase> SpinningBoxCases() {
+  return {
+      {"SpinningBoxReachesAWallWhenAFineReferenceSearchSaysSo", Eigen::Vector3d(0.5, 0.5, 0.5), 5.0,
+       3.0, 5.0, 1e-4, -1},
+      // Spinning fast, the box leaves the advancement to the fallback.
+      {"FastSpinLeavesAdvancementToTheFallbackAndStillLandsBeforeContact",
+       Eigen::Vector3d(0.5, 0.3, 0.5), 80.0, 2.0, 3.0, 1e-5, 200},
+  };
 }
+
+INSTANTIATE_TEST_SUITE_P(TimeOfImpact, SpinningBoxAgainstAWall,
+                         ::testing::ValuesIn(SpinningBoxCases()),
+                         [](const ::testing::TestParamInfo<SpinningBoxCase>& info) {
+                           return std::string(info.param.name);
+                         });
 
 TEST(TimeOfImpact, ABallSpinningAboutItsCentreDoesNotSlowTheSearch) {
   const Piece ball = Piece::Sphere({0, 0, 0}, 0.5);

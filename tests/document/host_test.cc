@@ -14,6 +14,7 @@
 #include "formats/document/xml.h"
 #include "host-shim/host_document.h"
 #include "host-shim/medium.h"
+#include "tests/common/samples.h"
 
 namespace asgard::host {
 namespace {
@@ -21,13 +22,6 @@ namespace {
 const std::string kPlugins = std::string(ASGARD_BINARY_DIR) + "/medium-plugin";
 const std::string kTestPlugins = std::string(ASGARD_BINARY_DIR) + "/tests/document/plugins";
 const std::string kCore = std::string(ASGARD_BINARY_DIR) + "/core/app/asgard-core";
-
-std::string ReadSample(const std::string& name) {
-  std::string bytes;
-  EXPECT_TRUE(
-      document::ReadFile(std::string(ASGARD_SOURCE_DIR) + "/samples/" + name, bytes, nullptr));
-  return bytes;
-}
 
 HostOptions Opts(const std::string& name, const std::string& core = "") {
   HostOptions o;

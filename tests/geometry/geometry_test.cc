@@ -98,6 +98,18 @@ void ExpectWellFormedHull(const ConvexHull& hull, const std::vector<Vector3d>& p
   }
 }
 
+// The hull of `points`, checked to be well formed and to have the given
+// numbers of vertices, faces and triangles.
+ConvexHull CountedHull(const std::vector<Vector3d>& points, size_t vertices, size_t faces,
+                       size_t triangles) {
+  const ConvexHull hull = ComputeHull(points);
+  EXPECT_EQ(hull.vertices.size(), vertices);
+  EXPECT_EQ(hull.faces.size(), faces);
+  EXPECT_EQ(hull.triangles.size(), triangles);
+  ExpectWellFormedHull(hull, points);
+  return hull;
+}
+
 void ExpectMatrixNear(const Matrix3d& actual, const Matrix3d& expected, double relative) {
   const double tolerance = relative * std::max(1.0, expected.norm());
   EXPECT_LE((actual - expected).norm(), tolerance) << "actual:\n"
@@ -130,11 +142,7 @@ TEST(ComputeHull, BoxWithInteriorAndDuplicatePointsHasEightVerticesAndSixQuads) 
   points.emplace_back(-0.9, 1.4, -2.4);
   points.emplace_back(0.0, 0.0, 2.5);   // centre of the top face
   points.emplace_back(1.0, 0.0, -2.5);  // on a bottom edge
-  const ConvexHull hull = ComputeHull(points);
-
-  EXPECT_EQ(hull.vertices.size(), 8u);
-  EXPECT_EQ(hull.faces.size(), 6u);
-  EXPECT_EQ(hull.triangles.size(), 12u);
+  const ConvexHull hull = CountedHull(points, 8u, 6u, 12u);
   for (const auto& face : hull.faces) EXPECT_EQ(face.vertices.size(), 4u);
   std::set<std::array<double, 3>> corners;
   for (const auto& v : hull.vertices) {
@@ -151,7 +159,6 @@ TEST(ComputeHull, BoxWithInteriorAndDuplicatePointsHasEightVerticesAndSixQuads) 
     face.normal.cwiseAbs().maxCoeff(&axis);
     EXPECT_NEAR(face.offset, Vector3d(a, b, c)[axis] / 2, 1e-14);
   }
-  ExpectWellFormedHull(hull, points);
 
   const double density = 1.5;
   const MassProperties mp = HullMassProperties(hull, density);
@@ -165,11 +172,7 @@ TEST(ComputeHull, BoxWithInteriorAndDuplicatePointsHasEightVerticesAndSixQuads) 
 TEST(ComputeHull, RegularTetrahedronHasFourTriangularFacesAndAnalyticMassProperties) {
   // Edge length 2√2; volume a³/(6√2) = 8/3, inertia m a²/20 about the centroid.
   const std::vector<Vector3d> points = {{1, 1, 1}, {1, -1, -1}, {-1, 1, -1}, {-1, -1, 1}};
-  const ConvexHull hull = ComputeHull(points);
-  EXPECT_EQ(hull.vertices.size(), 4u);
-  EXPECT_EQ(hull.faces.size(), 4u);
-  EXPECT_EQ(hull.triangles.size(), 4u);
-  ExpectWellFormedHull(hull, points);
+  const ConvexHull hull = CountedHull(points, 4u, 4u, 4u);
 
   const MassProperties mp = HullMassProperties(hull);
   const double edge = 2 * std::sqrt(2.0);
@@ -183,11 +186,7 @@ TEST(ComputeHull, OctahedronHasSixVerticesAndEightFaces) {
   std::vector<Vector3d> points = {{r, 0, 0},  {-r, 0, 0}, {0, r, 0},
                                   {0, -r, 0}, {0, 0, r},  {0, 0, -r}};
   points.emplace_back(0.1, 0.2, 0.3);
-  const ConvexHull hull = ComputeHull(points);
-  EXPECT_EQ(hull.vertices.size(), 6u);
-  EXPECT_EQ(hull.faces.size(), 8u);
-  EXPECT_EQ(hull.triangles.size(), 8u);
-  ExpectWellFormedHull(hull, points);
+  const ConvexHull hull = CountedHull(points, 6u, 8u, 8u);
   for (const auto& face : hull.faces) {
     EXPECT_NEAR(face.offset, r / std::sqrt(3.0), 1e-14);
   }
@@ -237,11 +236,7 @@ TEST(ComputeHull, RotatedAndTranslatedBoxInertiaTransformsAsRotationSandwich) {
   for (const auto& p : BoxCorners(a, b, c)) points.push_back(rotation * p + translation);
   points.push_back(translation);  // interior
 
-  const ConvexHull hull = ComputeHull(points);
-  EXPECT_EQ(hull.vertices.size(), 8u);
-  EXPECT_EQ(hull.faces.size(), 6u);
-  EXPECT_EQ(hull.triangles.size(), 12u);
-  ExpectWellFormedHull(hull, points);
+  const ConvexHull hull = CountedHull(points, 8u, 6u, 12u);
 
   const MassProperties mp = HullMassProperties(hull, 2.0);
   const double mass = 2.0 * a * b * c;
@@ -265,11 +260,7 @@ TEST(ComputeHull, PrismApproachesCylinderAsSideCountGrows) {
         points.emplace_back(radius * std::cos(phi), radius * std::sin(phi), z);
       }
     }
-    const ConvexHull hull = ComputeHull(points);
-    EXPECT_EQ(hull.vertices.size(), 2u * sides);
-    EXPECT_EQ(hull.faces.size(), sides + 2u);
-    EXPECT_EQ(hull.triangles.size(), 4u * sides - 4);
-    ExpectWellFormedHull(hull, points);
+    const ConvexHull hull = CountedHull(points, 2u * sides, sides + 2u, 4u * sides - 4);
 
     // Exact prism volume: n/2 r² sin(2π/n) h.
     const MassProperties mp = HullMassProperties(hull);
@@ -296,11 +287,7 @@ TEST(ComputeHull, SurfaceGridFarFromTheOriginReducesToTheEightCorners) {
         points.push_back(offset + Vector3d(0.25 * i, 0.5 * j, 0.125 * k));
     }
   }
-  const ConvexHull hull = ComputeHull(points);
-  EXPECT_EQ(hull.vertices.size(), 8u);
-  EXPECT_EQ(hull.faces.size(), 6u);
-  EXPECT_EQ(hull.triangles.size(), 12u);
-  ExpectWellFormedHull(hull, points);
+  const ConvexHull hull = CountedHull(points, 8u, 6u, 12u);
   const MassProperties mp = HullMassProperties(hull);
   EXPECT_NEAR(mp.volume, 2.0 * 4.0 * 1.0, 1e-8);
   EXPECT_LE((mp.centroid - offset).norm(), 1e-8);

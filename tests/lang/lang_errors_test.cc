@@ -3,7 +3,10 @@
 #include <gtest/gtest.h>
 
 #include <chrono>
+#include <functional>
+#include <ostream>
 #include <string>
+#include <vector>
 
 #include "core/lang/lang.h"
 
@@ -112,6 +115,8 @@ std::vector<BadInput> Catalogue() {
 
 class LangBadInput : public ::testing::TestWithParam<BadInput> {};
 
+void PrintTo(const BadInput& in, std::ostream* os) { *os << in.name; }
+
 TEST_P(LangBadInput, ReportsAnErrorAtTheRightPlaceWithoutCrashing) {
   const BadInput& in = GetParam();
   EvalLimits limits;
@@ -143,56 +148,72 @@ INSTANTIATE_TEST_SUITE_P(Catalogue, LangBadInput, ::testing::ValuesIn(Catalogue(
                            return std::string(info.param.name);
                          });
 
-TEST(LangRecovery, ASceneWithABadBodyStillYieldsTheOtherBodies) {
-  std::string text = std::string(kBox) +
-                     "body b1 -shape box -init_pos {1 0 0}\n"
-                     "body b2 -shape box -init_pos {oops 0 0}\n"
-                     "body b3 -shape box -init_pos {3 0 0}\n";
-  Scene s = Evaluate(text);
+// A scene with one error: evaluation reports it, at `line`, and goes on
+// (check reads what else the scene must give).
+struct OneError {
+  const char* name;
+  std::string text;
+  int line;
+  std::function<void(const Scene& s)> check;
+};
+
+class LangOneError : public ::testing::TestWithParam<OneError> {};
+
+void PrintTo(const OneError& c, std::ostream* os) { *os << c.name; }
+
+TEST_P(LangOneError, IsReportedAndEvaluationGoesOn) {
+  const OneError& c = GetParam();
+  Scene s = Evaluate(c.text);
   ASSERT_EQ(s.diagnostics.size(), 1u);
-  EXPECT_EQ(s.diagnostics[0].span.line, 3);
-  ASSERT_EQ(s.bodies.size(), 2u);
-  EXPECT_EQ(s.bodies[0].name, "b1");
-  EXPECT_EQ(s.bodies[1].name, "b3");
+  EXPECT_EQ(s.diagnostics[0].span.line, c.line);
+  c.check(s);
 }
 
-TEST(LangRecovery, AnErrorInALoopBodyDoesNotStopTheLoop) {
-  std::string text = std::string(kBox) +
-                     "foreach m {1 0 2} {\n"
-                     "  body b$m -shape box -mass $m\n"
-                     "}\n";
-  Scene s = Evaluate(text);
-  ASSERT_EQ(s.diagnostics.size(), 1u);
-  EXPECT_EQ(s.diagnostics[0].span.line, 3);
-  EXPECT_EQ(s.bodies.size(), 2u);
+std::vector<OneError> OneErrorCases() {
+  return {
+      {"ASceneWithABadBodyStillYieldsTheOtherBodies",
+       B("body b1 -shape box -init_pos {1 0 0}\n"
+         "body b2 -shape box -init_pos {oops 0 0}\n"
+         "body b3 -shape box -init_pos {3 0 0}\n"),
+       3,
+       [](const Scene& s) {
+         ASSERT_EQ(s.bodies.size(), 2u);
+         EXPECT_EQ(s.bodies[0].name, "b1");
+         EXPECT_EQ(s.bodies[1].name, "b3");
+       }},
+      {"AnErrorInALoopBodyDoesNotStopTheLoop",
+       B("foreach m {1 0 2} {\n"
+         "  body b$m -shape box -mass $m\n"
+         "}\n"),
+       3, [](const Scene& s) { EXPECT_EQ(s.bodies.size(), 2u); }},
+      {"CommandsBeforeAParseErrorStillMakeElements",
+       B("body b1 -shape box\n"
+         "body b2 -shape box -init_pos {1 2 3\n"
+         "body b3 -shape box\n"),
+       3,
+       [](const Scene& s) {
+         EXPECT_EQ(s.diagnostics[0].span.column, 30);
+         ASSERT_EQ(s.bodies.size(), 1u);
+         EXPECT_EQ(s.bodies[0].name, "b1");
+       }},
+      {"ATclErrorAbortsOnlyItsOwnTopLevelCommand",
+       B("foreach i {1 2 3} {\n"
+         "  body b$i -shape box\n"
+         "  if {$i == 2} { error \"stop here\" }\n"
+         "}\n"
+         "body after -shape box\n"),
+       4,
+       [](const Scene& s) {
+         EXPECT_EQ(s.diagnostics[0].message, "stop here");
+         EXPECT_EQ(s.bodies.size(), 3u);  // b1 b2 after
+       }},
+  };
 }
 
-TEST(LangRecovery, CommandsBeforeAParseErrorStillMakeElements) {
-  std::string text = std::string(kBox) +
-                     "body b1 -shape box\n"
-                     "body b2 -shape box -init_pos {1 2 3\n"
-                     "body b3 -shape box\n";
-  Scene s = Evaluate(text);
-  ASSERT_EQ(s.diagnostics.size(), 1u);
-  EXPECT_EQ(s.diagnostics[0].span.line, 3);
-  EXPECT_EQ(s.diagnostics[0].span.column, 30);
-  ASSERT_EQ(s.bodies.size(), 1u);
-  EXPECT_EQ(s.bodies[0].name, "b1");
-}
-
-TEST(LangRecovery, ATclErrorAbortsOnlyItsOwnTopLevelCommand) {
-  std::string text = std::string(kBox) +
-                     "foreach i {1 2 3} {\n"
-                     "  body b$i -shape box\n"
-                     "  if {$i == 2} { error \"stop here\" }\n"
-                     "}\n"
-                     "body after -shape box\n";
-  Scene s = Evaluate(text);
-  ASSERT_EQ(s.diagnostics.size(), 1u);
-  EXPECT_EQ(s.diagnostics[0].message, "stop here");
-  EXPECT_EQ(s.diagnostics[0].span.line, 4);
-  EXPECT_EQ(s.bodies.size(), 3u);  // b1 b2 after
-}
+INSTANTIATE_TEST_SUITE_P(Recovery, LangOneError, ::testing::ValuesIn(OneErrorCases()),
+                         [](const ::testing::TestParamInfo<OneError>& info) {
+                           return std::string(info.param.name);
+                         });
 
 TEST(LangRecovery, ManyErrorsAreCapped) {
   std::string text = "for {set i 0} {$i < 1000} {incr i} { body b$i -shape box -mass 0 }\n";

@@ -7,6 +7,7 @@
 #include <sstream>
 
 #include "core/pipeline/pipeline.h"
+#include "tests/common/samples.h"
 #include "tests/solver/reference_problems.h"
 
 namespace asgard {
@@ -261,13 +262,6 @@ TEST(Collision, DirectlyLinkedPartsOfOneArticulatedBodyDoNotCollide) {
   EXPECT_TRUE(run.collisions->Tested(0, 2));  // non-adjacent parts still collide
   EXPECT_TRUE(run.collisions->impacts().empty());
   EXPECT_TRUE(run.collisions->warnings().empty());
-}
-
-std::string ReadSample(const std::string& name) {
-  std::ifstream in(std::string(ASGARD_SOURCE_DIR) + "/samples/" + name);
-  std::stringstream ss;
-  ss << in.rdbuf();
-  return ss.str();
 }
 
 TEST(Collision, TheSeedPendulumHitsTheBallWhichFliesOffToTheRight) {

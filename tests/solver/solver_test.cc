@@ -9,6 +9,7 @@
 
 #include "core/physics/trajectory.h"
 #include "core/pipeline/pipeline.h"
+#include "tests/common/samples.h"
 #include "tests/solver/reference_problems.h"
 
 namespace asgard {
@@ -233,13 +234,6 @@ TEST(Partition, TwoBodiesWithAMutualXForceShareOneXComponent) {
   EXPECT_NE(sim.component_of(Var(run, "b1", physics::kY)),
             sim.component_of(Var(run, "b2", physics::kY)));
   EXPECT_EQ(sim.component(sim.component_of(Var(run, "b1", physics::kY))).variables().size(), 1u);
-}
-
-std::string ReadSample(const std::string& name) {
-  std::ifstream in(std::string(ASGARD_SOURCE_DIR) + "/samples/" + name);
-  std::stringstream ss;
-  ss << in.rdbuf();
-  return ss.str();
 }
 
 TEST(Partition, TheTwoRodLinkedPendulumFormsOneLargeComponent) {
