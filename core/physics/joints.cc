@@ -39,6 +39,7 @@ JointSolver::JointSolver(const EquationSystem& sys, std::vector<int> joints,
     d.inv_mass = 1.0 / m.mass;
     d.inv_inertia = m.inertia.inverse();
     d.R.setIdentity();
+    d.inv_inertia_world = d.inv_inertia;
     d.w.setZero();
     d.kinematic = false;
     bodies_.push_back(d);
@@ -135,8 +136,9 @@ Eigen::Matrix3d JointSolver::Coupling(int i, int k) const {
       const BodyData& b = bodies_[ei.body];
       if (b.kinematic) continue;
       const double sign = (x == y) ? 1.0 : -1.0;
-      const Eigen::Matrix3d W = b.inv_mass * Eigen::Matrix3d::Identity() -
-                                b.R * Skew(ei.s) * b.inv_inertia * Skew(ek.s) * b.R.transpose();
+      // W(s, s') = I₃/m − [r]× I_W⁻¹ [r']× with world arms r = R s.
+      Eigen::Matrix3d W = -ei.arm_skew * b.inv_inertia_world * ek.arm_skew;
+      W.diagonal().array() += b.inv_mass;
       K += sign * W;
     }
   return K;
@@ -148,11 +150,15 @@ void JointSolver::Prepare(double t, const double* values, const char* prescribed
     const int v0 = sys_.bodies[b.body].first_var;
     Eigen::Quaterniond q(values[v0 + kQw], values[v0 + kQx], values[v0 + kQy], values[v0 + kQz]);
     b.R = q.normalized().toRotationMatrix();
+    b.inv_inertia_world.noalias() = b.R * b.inv_inertia * b.R.transpose();
     b.w = Eigen::Vector3d(values[v0 + kW1], values[v0 + kW2], values[v0 + kW3]);
     b.kinematic = false;
     for (int slot = kX; slot <= kW3; ++slot)
       if (prescribed[b.local + slot]) b.kinematic = true;
   }
+  for (JointData& d : joints_)
+    for (End* e : {&d.a, &d.b})
+      if (e->body >= 0) e->arm_skew = Skew(bodies_[e->body].R * e->s);
   if (!point_values_.empty()) point_tape_.Evaluate(t, values, point_values_.data(), externs);
 }
 

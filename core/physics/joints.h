@@ -82,12 +82,14 @@ class JointSolver {
     Eigen::Matrix3d inv_inertia;  // body axes
     // per evaluation
     Eigen::Matrix3d R;
+    Eigen::Matrix3d inv_inertia_world;  // R I⁻¹ Rᵀ
     Eigen::Vector3d w;            // angular velocity, body axes
     bool kinematic;
   };
   struct End {
     int body = -1;                // index into bodies_, -1: point of space
     Eigen::Vector3d s = Eigen::Vector3d::Zero();
+    Eigen::Matrix3d arm_skew = Eigen::Matrix3d::Zero();  // [R s]×, per evaluation
   };
   struct JointData {
     End a, b;
