@@ -51,6 +51,14 @@ bool Solve(Run& run, const RunOptions& options) {
     for (const auto& w : run.collisions->warnings()) run.diagnostics.push_back(w);
   run.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   if (!ok) run.solver_error = run.simulation->error();
+  // A value that stopped being finite: name the body's command line too.
+  if (const int v = run.simulation->failed_variable(); !ok && v >= 0) {
+    const int b = run.equations->variables[v].body;
+    for (const auto& body : run.scene.bodies)
+      if (b >= 0 && body.name == run.equations->bodies[b].name && body.command.known())
+        run.solver_error = "line " + std::to_string(body.command.line) + ": body " + body.name +
+                           ": " + run.solver_error;
+  }
   return run.ok = ok;
 }
 

@@ -605,8 +605,26 @@ double Component::NextEnd() const {
   return PlanStep(t, h, NextBreakpoint(t), sys_.t1).t_end;
 }
 
+bool Component::CheckFinite() {
+  const int k = wave_.size() - 1;
+  const double* x = wave_.x(k);
+  const double* f = wave_.f(k);
+  for (size_t j = 0; j < vars_.size(); ++j) {
+    if (std::isfinite(x[j]) && std::isfinite(f[j])) continue;
+    failed_variable_ = vars_[j];
+    std::ostringstream msg;
+    msg << "at t=" << wave_.time(k) << " " << sys_.variables[vars_[j]].name << " = " << x[j]
+        << " with rate " << f[j] << " (component " << index_
+        << "): values must stay finite";
+    error_ = msg.str();
+    return false;
+  }
+  return true;
+}
+
 bool Component::Step() {
   if (PendingRestart()) Restart();
+  if (!CheckFinite()) return false;
   if (finished()) return true;
   const int k = wave_.size() - 1;
   const double t = wave_.time(k);

@@ -117,6 +117,9 @@ class Component {
   // Returns false on failure; error() says why.
   bool Step();
   const std::string& error() const { return error_; }
+  // After a failure caused by a value that is not finite: that variable
+  // (global index), else -1.
+  int failed_variable() const { return failed_variable_; }
 
   // Keeps samples up to `t` (see Waveform::KeepIndex), or with `strict` only
   // those before t; returns the time of the last sample kept.
@@ -210,6 +213,11 @@ class Component {
   double rho_ = 0.0;  // spectral radius estimate at the Jacobian's sample
   Counters counters_;
   std::string error_;
+  int failed_variable_ = -1;
+  // Fails the step when the last sample holds a value or rate that is not
+  // finite (an overflowing initial value, a force that divides by zero):
+  // shrinking the step cannot help, and the message names the variable.
+  bool CheckFinite();
   // scratch
   std::vector<double> x_, y_, fy_, yg_, fg_, c_, r_, est_, rate_, rowsum_, pv_, pw_, gdot_;
   std::vector<double> k_[7];   // Dormand–Prince stages

@@ -126,6 +126,7 @@ bool Simulation::StepOnce() {
     Component& comp = *components_[e.c];
     if (!comp.Step()) {
       error_ = comp.error();
+      failed_variable_ = comp.failed_variable();
       failed_ = true;
       return false;
     }
@@ -146,6 +147,7 @@ bool Simulation::Run(const std::function<void(double)>& progress) {
       while (!components_[c]->finished()) {
         if (!components_[c]->Step()) {
           error_ = components_[c]->error();
+          failed_variable_ = components_[c]->failed_variable();
           return false;
         }
         if (after_step) after_step(*this, static_cast<int>(c));

@@ -50,6 +50,8 @@ class Simulation {
   // `progress` (may be empty) receives the least time reached, in [t0, t1].
   bool Run(const std::function<void(double)>& progress = {});
   const std::string& error() const { return error_; }
+  // The variable whose value stopped the run by not being finite, or -1.
+  int failed_variable() const { return failed_variable_; }
 
   // Takes one step of the component furthest behind; false when none is
   // eligible (done) or on failure.
@@ -134,6 +136,7 @@ class Simulation {
   std::vector<uint64_t> stamp_;    // current stamp per component
   std::vector<char> queued_;
   std::string error_;
+  int failed_variable_ = -1;
   bool failed_ = false;
   int truncate_depth_ = 0;
 };

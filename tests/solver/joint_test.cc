@@ -291,3 +291,35 @@ TEST(MethodChoice, ExplicitPlaybackBetweenSamplesIsFourthOrder) {
 
 }  // namespace
 }  // namespace asgard
+
+namespace asgard {
+namespace {
+
+TEST(NonFinite, AValueThatIsNotFiniteStopsTheRunNamingTheVariableTimeAndLine) {
+  struct Case {
+    const char* scene;
+    const char* variable;
+  };
+  const Case cases[] = {
+      // a force that divides by zero at the start
+      {"body b -shape ball -init_pos {0 0 0}\n"
+       "force -body b -x {1 / b.x} -y 0 -z 0\nsimulator -finish 1\n",
+       "b.dx"},
+      // an initial velocity that overflows once the force acts on it
+      {"body b -shape ball -init_pos {1 0 0} -init_dpos {1e308 0 0}\n"
+       "force -body b -x {b.dx * 1e10} -y 0 -z 0\nsimulator -finish 1\n",
+       "b.dx"},
+  };
+  for (const Case& c : cases) {
+    pipeline::RunOptions opts;
+    const pipeline::Run run =
+        pipeline::Simulate(std::string(testing::kBallShape) + c.scene, opts);
+    EXPECT_FALSE(run.ok) << c.scene;
+    EXPECT_NE(run.solver_error.find(c.variable), std::string::npos) << run.solver_error;
+    EXPECT_NE(run.solver_error.find("line 2: body b"), std::string::npos) << run.solver_error;
+    EXPECT_NE(run.solver_error.find("at t="), std::string::npos) << run.solver_error;
+  }
+}
+
+}  // namespace
+}  // namespace asgard
