@@ -14,7 +14,7 @@
 //   Stiffness is judged from the spectral radius ρ of ∂f/∂x, never from a
 //   matrix norm (the quaternion and angular-velocity rows make ‖J‖ orders
 //   of magnitude larger than any eigenvalue): at the start, by power
-//   iteration on the Jacobian (stiff above 2000/s); while explicit, from the
+//   iteration on the Jacobian (stiff above 500/s); while explicit, from the
 //   last two stages (Hairer's estimate hρ ≈ h‖k₇−k₆‖/‖y₁−y₆‖; 15 steps above
 //   3.25 switch to implicit); while implicit, by power iteration at each
 //   Jacobian (15 steps whose next hρ < 1 switch back).  The votes travel with
