@@ -175,7 +175,7 @@ bool Simulation::Run(const std::function<void(double)>& progress) {
 void Simulation::Truncate(int c, double t, bool strict) {
   // Cut times propagate in dependency order (components are numbered in
   // it), so each component is cut once, to the earliest time required.
-  ++truncate_depth_;
+  TruncationScope scope(*this);
   const size_t n = components_.size();
   std::vector<double> cut(n, std::numeric_limits<double>::infinity());
   cut[c] = t;
@@ -192,7 +192,6 @@ void Simulation::Truncate(int c, double t, bool strict) {
   }
   RebuildBreakpoints(c);
   RepairQueue(affected);
-  if (--truncate_depth_ == 0 && after_truncate) after_truncate(*this);
 }
 
 void Simulation::CopyResults(int c, const Component& from) {
@@ -202,7 +201,7 @@ void Simulation::CopyResults(int c, const Component& from) {
 }
 
 void Simulation::ResetToStart(int c) {
-  ++truncate_depth_;
+  TruncationScope scope(*this);
   Truncate(c, sys_.t0);
   // Every component Truncate reached now holds only its first sample; rebuild
   // those in dependency order so readers see their inputs' new start.
@@ -217,7 +216,6 @@ void Simulation::ResetToStart(int c) {
   for (size_t k = 0; k < components_.size(); ++k)
     if (reached[k]) affected.push_back(static_cast<int>(k));
   RepairQueue(affected);
-  if (--truncate_depth_ == 0 && after_truncate) after_truncate(*this);
 }
 
 void Simulation::RebuildBreakpoints(int c) {
@@ -236,34 +234,28 @@ void Simulation::RebuildBreakpoints(int c) {
   }
 }
 
-void Simulation::SetValueAt(int var, double t, double value) {
-  ++truncate_depth_;
+// Truncates var's component to t and applies `edit` to it there (a jump, a
+// hold or its release); observers hear of it once the outermost change ends.
+template <typename Edit>
+void Simulation::ChangeAt(int var, double t, Edit edit) {
+  TruncationScope scope(*this);
   const int c = partition_.component_of[var];
   Truncate(c, t);
-  components_[c]->AddJump(t, local_index_[var], value);
+  edit(*components_[c], local_index_[var]);
   RebuildBreakpoints(c);
   RepairQueue({c});
-  if (--truncate_depth_ == 0 && after_truncate) after_truncate(*this);
+}
+
+void Simulation::SetValueAt(int var, double t, double value) {
+  ChangeAt(var, t, [&](Component& c, int local) { c.AddJump(t, local, value); });
 }
 
 void Simulation::HoldAt(int var, double t, double value) {
-  ++truncate_depth_;
-  const int c = partition_.component_of[var];
-  Truncate(c, t);
-  components_[c]->AddHold(t, local_index_[var], value);
-  RebuildBreakpoints(c);
-  RepairQueue({c});
-  if (--truncate_depth_ == 0 && after_truncate) after_truncate(*this);
+  ChangeAt(var, t, [&](Component& c, int local) { c.AddHold(t, local, value); });
 }
 
 void Simulation::ReleaseAt(int var, double t) {
-  ++truncate_depth_;
-  const int c = partition_.component_of[var];
-  Truncate(c, t);
-  components_[c]->ReleaseHold(t, local_index_[var]);
-  RebuildBreakpoints(c);
-  RepairQueue({c});
-  if (--truncate_depth_ == 0 && after_truncate) after_truncate(*this);
+  ChangeAt(var, t, [&](Component& c, int local) { c.ReleaseHold(t, local); });
 }
 
 bool Simulation::Held(int var, double t) const {

@@ -112,6 +112,17 @@ class Simulation {
   double restart_step() const { return restart_step_; }
 
  private:
+  // Counts nested truncations; the outermost one, when it ends, calls
+  // after_truncate.
+  struct TruncationScope {
+    explicit TruncationScope(Simulation& s) : sim(s) { ++sim.truncate_depth_; }
+    ~TruncationScope() {
+      if (--sim.truncate_depth_ == 0 && sim.after_truncate) sim.after_truncate(sim);
+    }
+    Simulation& sim;
+  };
+  template <typename Edit>
+  void ChangeAt(int var, double t, Edit edit);
   bool Eligible(int c) const;
   void Push(int c);
   void RepairQueue(const std::vector<int>& affected);

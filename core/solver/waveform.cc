@@ -67,24 +67,21 @@ Hermite Weights(double t0, double t1, double t) {
 }
 }  // namespace
 
-double Waveform::Value(int i, double t, Side side) const {
+double Waveform::Interpolate(int i, double t, Side side, bool rate) const {
   const int k = Locate(t, side);
-  if (k + 1 >= size() || times_[k + 1] == times_[k]) return x(k)[i];
-  if (t == times_[k]) return x(k)[i];
-  if (t == times_[k + 1]) return x(k + 1)[i];
+  const double* at = rate ? f(k) : x(k);
+  if (k + 1 >= size() || times_[k + 1] == times_[k] || t == times_[k]) return at[i];
+  if (t == times_[k + 1]) return (rate ? f(k + 1) : x(k + 1))[i];
   const Hermite w = Weights(times_[k], times_[k + 1], t);
+  if (rate)
+    return w.d00 * x(k)[i] + w.d10 * f(k)[i] + w.d01 * x(k + 1)[i] + w.d11 * f(k + 1)[i] +
+           w.db * bubble(k + 1)[i];
   return w.h00 * x(k)[i] + w.h10 * f(k)[i] + w.h01 * x(k + 1)[i] + w.h11 * f(k + 1)[i] +
          w.hb * bubble(k + 1)[i];
 }
 
-double Waveform::Rate(int i, double t, Side side) const {
-  const int k = Locate(t, side);
-  if (k + 1 >= size() || times_[k + 1] == times_[k]) return f(k)[i];
-  if (t == times_[k]) return f(k)[i];
-  if (t == times_[k + 1]) return f(k + 1)[i];
-  const Hermite w = Weights(times_[k], times_[k + 1], t);
-  return w.d00 * x(k)[i] + w.d10 * f(k)[i] + w.d01 * x(k + 1)[i] + w.d11 * f(k + 1)[i] +
-         w.db * bubble(k + 1)[i];
-}
+double Waveform::Value(int i, double t, Side side) const { return Interpolate(i, t, side, false); }
+
+double Waveform::Rate(int i, double t, Side side) const { return Interpolate(i, t, side, true); }
 
 }  // namespace asgard::solver

@@ -79,6 +79,7 @@ class Waveform {
  private:
   // Segment [k, k+1] containing t (k+1 < size), or the last sample (k+1 == size).
   int Locate(double t, Side side) const;
+  double Interpolate(int i, double t, Side side, bool rate) const;
 
   int n_;
   std::vector<double> times_;
