@@ -306,6 +306,26 @@ TEST(Slave, SigkillMidSimulationLeavesTheHostRunningAndRestartWorks) {
   EXPECT_EQ(Status(n.node).state, ASGARD_NODE_SIMULATED);
 }
 
+// Progress notifications reset the watchdog, but cannot extend a call past
+// kOverallTimeoutFactor times the timeout: a simulation that progresses
+// forever is stopped too.
+TEST(Slave, ProgressCannotExtendACallPastItsOverallDeadline) {
+  setenv("ASGARD_CORE_FAULT", "endless-progress-on-simulate", 1);
+  Node n;
+  const int32_t created = Create(Scene(), n, 0.5);
+  unsetenv("ASGARD_CORE_FAULT");
+  ASSERT_EQ(created, ASGARD_OK);
+  asgard_error e{};
+  const auto start = std::chrono::steady_clock::now();
+  EXPECT_EQ(Asgard().node()->simulate(n.node, nullptr, nullptr, &e), ASGARD_ERR_TIMEOUT);
+  const auto took = std::chrono::steady_clock::now() - start;
+  EXPECT_GE(took, std::chrono::milliseconds(1900));
+  EXPECT_LT(took, std::chrono::seconds(5));
+  EXPECT_NE(std::string(e.message).find("did not finish 'simulate' within 2 s"), std::string::npos)
+      << e.message;
+  EXPECT_EQ(Status(n.node).state, ASGARD_NODE_HUNG);
+}
+
 TEST(Slave, ASlaveThatStopsAnsweringIsStoppedByTheWatchdog) {
   setenv("ASGARD_CORE_FAULT", "hang-on-simulate", 1);
   Node n;
