@@ -23,8 +23,10 @@
 //
 // Test hooks (environment ASGARD_CORE_FAULT): "hang-on-simulate" stops
 // answering when asked to simulate; "endless-progress-on-simulate" reports
-// progress every 50 ms and never finishes; "garbage-on-frame" answers a frame request
+// progress every 50 ms and never finishes; "exit-on-frame" exits when asked for a
+// frame; "garbage-on-frame" answers a frame request
 // with bytes that are not JSON; "exit-on-load" exits at the first load.
+#include <fcntl.h>
 #include <sys/mman.h>
 #include <sys/stat.h>
 #include <unistd.h>
@@ -113,6 +115,15 @@ class Slave {
   Slave(int in, int out, uint8_t* shm, size_t shm_size)
       : in_(in), out_(out), shm_(shm), shm_size_(shm_size) {
     if (const char* f = std::getenv("ASGARD_CORE_FAULT")) fault_ = f;
+    // With ASGARD_CORE_FAULT_ONCE=FILE only the first slave misbehaves: the
+    // one that creates FILE.
+    if (const char* once = std::getenv("ASGARD_CORE_FAULT_ONCE"); once && !fault_.empty()) {
+      const int fd = ::open(once, O_CREAT | O_EXCL | O_WRONLY, 0600);
+      if (fd < 0)
+        fault_.clear();
+      else
+        ::close(fd);
+    }
   }
 
   int Loop() {
@@ -355,6 +366,7 @@ class Slave {
       throw RpcError{kInvalidParams, "invalid params: no rendition " + std::to_string(id)};
     if (!sampler_) throw RpcError{kNotSimulated, "the scene has not been simulated"};
     Rendition& r = it->second;
+    if (fault_ == "exit-on-frame") std::_Exit(9);
     if (fault_ == "garbage-on-frame") {
       const char junk[] = "\x00\x00\x00\x05{{{{{";
       WriteAll(out_, junk, sizeof junk - 1);

@@ -389,10 +389,21 @@ TEST(HostDocument, KillingTheSlaveKeepsTheDocumentAndThePoster) {
   bool live = false;
   const Picture p = doc.Frame(item, ASGARD_DEVICE_PAGE, 90, 60, 1.0, 0, &live);
   ASSERT_TRUE(live);
+  // The first death: the slave is restarted once and the frame drawn.
+  kill(item.status.pid, SIGKILL);
+  doc.Frame(item, ASGARD_DEVICE_PAGE, 90, 60, 2.0, 0, &live);
+  EXPECT_TRUE(live);
+  EXPECT_TRUE(item.restarted);
+  EXPECT_NE(item.restart_reason.find("killed by signal 9"), std::string::npos)
+      << item.restart_reason;
+  const Picture p2 = doc.Frame(item, ASGARD_DEVICE_PAGE, 90, 60, 1.0, 0, &live);
+  ASSERT_TRUE(live);
+  // The second: no more restarts, the last frame is shown.
   kill(item.status.pid, SIGKILL);
   const Picture q = doc.Frame(item, ASGARD_DEVICE_PAGE, 90, 60, 2.0, 0, &live);
   EXPECT_FALSE(live);
-  EXPECT_EQ(q.rgba, p.rgba) << "the last frame is shown";
+  EXPECT_EQ(q.rgba, p2.rgba) << "the last frame is shown";
+  EXPECT_EQ(p2.rgba, p.rgba);
   EXPECT_NE(item.message.find("killed by signal 9"), std::string::npos) << item.message;
   EXPECT_EQ(document::Write(doc.document()), bytes) << "the document is intact";
   ASSERT_TRUE(doc.Restart(item)) << item.message;

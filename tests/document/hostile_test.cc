@@ -6,6 +6,7 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <chrono>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -140,6 +141,177 @@ TEST(HostileFiles, AnExistingFileKeepsItsFlavour) {
   // A new file takes the flavour its name says.
   ASSERT_TRUE(SaveDocument(*doc.document, (dir / "new.xml").string(), nullptr));
   EXPECT_TRUE(LooksLikeXml(Read(dir / "new.xml")));
+}
+
+// --- dochost on documents that used to lose text -----------------------------
+
+const std::string kDochost = std::string(ASGARD_BINARY_DIR) + "/host-shim/dochost";
+
+struct Exit {
+  int status = -1;
+  std::string out;
+};
+
+Exit Exec(const std::string& command) {
+  Exit r;
+  FILE* p = popen((command + " 2>&1").c_str(), "r");
+  char buf[4096];
+  size_t n;
+  while ((n = fread(buf, 1, sizeof buf, p)) > 0) r.out.append(buf, n);
+  const int s = pclose(p);
+  r.status = WIFEXITED(s) ? WEXITSTATUS(s) : -1;
+  return r;
+}
+
+std::string Memo(const std::string& subject, const std::string& paragraph) {
+  return "DOCUMENT CMEMO\n<CMEMO>\n<TO>{Whom it may concern}</TO>\n<SUBJECT>{" + subject +
+         "}</SUBJECT>\n<BODY>\n<PARAGRAPH><TEXT>{" + paragraph +
+         "}</TEXT></PARAGRAPH>\n</BODY>\n</CMEMO>\n";
+}
+
+// Runs of white space as one space (pdftotext breaks justified lines).
+std::string Collapsed(const std::string& text) {
+  std::string out;
+  for (char c : text) {
+    const bool space = c == ' ' || c == '\n' || c == '\f' || c == '\t';
+    if (space && !out.empty() && out.back() == ' ') continue;
+    out += space ? ' ' : c;
+  }
+  return out;
+}
+
+size_t Count(const std::string& text, const std::string& word) {
+  size_t n = 0;
+  for (size_t at = 0; (at = text.find(word, at)) != std::string::npos; at += word.size()) ++n;
+  return n;
+}
+
+// A 1500-word paragraph printed 552 words: it now continues on the next
+// pages, every word of it.
+TEST(HostileDocuments, AParagraphLongerThanAPageBreaksAcrossPages) {
+  const fs::path dir = Scratch("long");
+  std::string words;
+  for (int i = 0; i < 1500; ++i) words += (i ? " w" : "w") + std::to_string(i);
+  std::ofstream(dir / "long.ens") << Memo("Long", words);
+  const Exit r = Exec(kDochost + " convert " + (dir / "long.ens").string() + " -o " +
+                      (dir / "long.pdf").string());
+  ASSERT_EQ(r.status, 0) << r.out;
+  const Exit text = Exec("pdftotext " + (dir / "long.pdf").string() + " -");
+  ASSERT_EQ(text.status, 0);
+  EXPECT_NE(text.out.find("w0 "), std::string::npos);
+  EXPECT_NE(text.out.find("w1499"), std::string::npos) << "the paragraph's end is missing";
+  EXPECT_EQ(Count(text.out, "w"), 1500u);
+  EXPECT_GE(Count(text.out, "\f"), 3u) << "at least three pages";
+}
+
+// Invalid UTF-8 in a field dropped the whole field, and a NUL cut a text
+// short: both now show U+FFFD in place and keep the rest.
+TEST(HostileDocuments, InvalidUtf8AndNulAreShownReplacedNotDropped) {
+  const fs::path dir = Scratch("utf8");
+  std::ofstream(dir / "bad.ens", std::ios::binary) << Memo(
+      "before\xff\xfe"
+      "after",
+      std::string("start") + '\0' + "end of the text");
+  const Exit r = Exec(kDochost + " convert " + (dir / "bad.ens").string() + " -o " +
+                      (dir / "bad.pdf").string());
+  ASSERT_EQ(r.status, 0) << r.out;
+  const Exit text = Exec("pdftotext " + (dir / "bad.pdf").string() + " -");
+  EXPECT_NE(text.out.find("before\xef\xbf\xbd"), std::string::npos) << text.out;
+  EXPECT_NE(text.out.find("after"), std::string::npos) << text.out;
+  EXPECT_NE(text.out.find("start\xef\xbf\xbd"
+                          "end of the text"),
+            std::string::npos)
+      << text.out;
+}
+
+// The hostile document of issue 12: an animation that tries every command a
+// scene may not use, entity references meant as a bomb in its text, and a
+// poster that claims gigapixels.  It converts within 30 s under a 2 GB
+// address-space limit, each problem is reported, and the rest is intact.
+TEST(HostileDocuments, TheHostileDocumentConvertsWithEveryProblemReported) {
+  const fs::path dir = Scratch("hostile");
+  std::string scene =
+      "shape_set s -desc \\{-sub \\{-sphere 0.5\\}\\}\n"
+      "body b -shape s\nsimulator -finish 1\n";
+  for (const char* cmd :
+       {"exec ls", "open /etc/passwd", "file delete x", "socket localhost 80", "source /etc/passwd",
+        "load libc.so", "cd /", "exit 3", "glob *", "pwd", "interp create x", "after 100000",
+        "vwait forever", "update", "fconfigure stdout", "encoding system", "unload x", "puts hi"})
+    scene += std::string(cmd) + "\n";
+  // A PNG header claiming 100000 x 100000 pixels (and nothing after it).
+  std::string png = "\x89PNG\r\n\x1a\n";
+  png += std::string("\0\0\0\x0dIHDR", 8);
+  for (uint32_t v : {100000u, 100000u})
+    for (int k = 3; k >= 0; --k) png += static_cast<char>((v >> (8 * k)) & 0xff);
+  png += std::string("\x08\x06\0\0\0\0\0\0\0", 9);
+  std::string bomb = "<!ENTITY lol \"lol\"> ";
+  for (int i = 0; i < 200; ++i) bomb += "&lol9; ";
+  const std::string doc =
+      "DOCUMENT CMEMO\n<CMEMO>\n<TO>{Whom it may concern}</TO>\n<SUBJECT>{Hostile}</SUBJECT>\n"
+      "<BODY>\n<PARAGRAPH><TEXT>{Before the animation. " +
+      bomb +
+      "}</TEXT></PARAGRAPH>\n"
+      "<PARAGRAPH><DOCUMENT>\nDOCUMENT ANIMATION\n<ANIMATION>\n<ASGARD>{\n" +
+      scene + "}</ASGARD>\n<POSTER>{" + Base64Encode(png) +
+      "}</POSTER>\n</ANIMATION>\n</DOCUMENT>"
+      "</PARAGRAPH>\n<PARAGRAPH><TEXT>{After the animation: the end.}</TEXT></PARAGRAPH>\n"
+      "</BODY>\n</CMEMO>\n";
+  std::ofstream(dir / "hostile.ens") << doc;
+  const auto start = std::chrono::steady_clock::now();
+  const Exit r =
+      Exec("bash -c 'ulimit -v 2000000; exec timeout 60 " + kDochost + " convert --timeout 5 " +
+           (dir / "hostile.ens").string() + " -o " + (dir / "hostile.pdf").string() + "'");
+  EXPECT_LT(std::chrono::steady_clock::now() - start, std::chrono::seconds(30));
+  EXPECT_NE(r.status, -1) << r.out;
+  EXPECT_NE(r.status, 124) << "timed out: " << r.out;
+  EXPECT_NE(r.out.find("hostile.ens:"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("<POSTER>: ignored: the picture is 100000 × 100000 pixels"),
+            std::string::npos)
+      << r.out;
+  EXPECT_NE(r.out.find("animation 1:"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("not available in scene scripts"), std::string::npos) << r.out;
+  Exit text = Exec("pdftotext " + (dir / "hostile.pdf").string() + " -");
+  text.out = Collapsed(text.out);
+  EXPECT_NE(text.out.find("Before the animation."), std::string::npos) << text.out;
+  EXPECT_EQ(Count(text.out, "&lol9;"), 200u) << "the text is shown as written";
+  EXPECT_NE(text.out.find("After the animation: the end."), std::string::npos) << text.out;
+}
+
+// A slave killed while a page is exported is restarted once; the page gets
+// its frames and stderr says what happened.
+TEST(HostileDocuments, ASlaveKilledDuringHtmlExportIsRestartedOnceAndReported) {
+  const fs::path dir = Scratch("restart");
+  const std::string memo = std::string(ASGARD_SOURCE_DIR) + "/samples/memo.ens";
+  const std::string html = (dir / "memo.html").string();
+  const Exit once =
+      Exec("ASGARD_CORE_FAULT=exit-on-frame ASGARD_CORE_FAULT_ONCE=" + (dir / "marker").string() +
+           " " + kDochost + " convert " + memo + " -o " + html);
+  EXPECT_EQ(once.status, 0) << once.out;
+  EXPECT_NE(once.out.find("animation 1: asgard-core exited with status 9"), std::string::npos)
+      << once.out;
+  EXPECT_NE(once.out.find("it was restarted once"), std::string::npos) << once.out;
+  EXPECT_GT(Count(Read(html), "data:image/png;base64,"), 10u) << "the frames are in the page";
+
+  // Dying again after the restart: the poster, and the reason on stderr.
+  const Exit always =
+      Exec("ASGARD_CORE_FAULT=exit-on-frame " + kDochost + " convert " + memo + " -o " + html);
+  EXPECT_NE(always.out.find("it was restarted once"), std::string::npos) << always.out;
+  EXPECT_NE(always.out.find("dochost: " + memo + ": animation 1: asgard-core exited"),
+            std::string::npos)
+      << always.out;
+}
+
+// `recompute` said "recomputed" (exit 0) when the slave had died.
+TEST(HostileDocuments, RecomputeWithADeadSlaveIsAnError) {
+  const fs::path dir = Scratch("recompute");
+  fs::copy_file(std::string(ASGARD_SOURCE_DIR) + "/samples/memo.ens", dir / "memo.ens");
+  const std::string before = Read(dir / "memo.ens");
+  const Exit r = Exec("ASGARD_CORE_FAULT=exit-on-frame " + kDochost + " verb " +
+                      (dir / "memo.ens").string() + " recompute");
+  EXPECT_EQ(r.status, 1) << r.out;
+  EXPECT_EQ(r.out.find("animation 1: recomputed"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("not recomputed"), std::string::npos) << r.out;
+  EXPECT_EQ(Read(dir / "memo.ens"), before) << "the document is left alone";
 }
 
 // --- asgard-core fed raw frames on standard input ---------------------------
