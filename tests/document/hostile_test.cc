@@ -15,6 +15,7 @@
 #include "formats/document/document.h"
 #include "formats/document/file.h"
 #include "formats/document/xml.h"
+#include "tests/document/exec.h"
 
 namespace asgard::document {
 namespace {
@@ -147,21 +148,8 @@ TEST(HostileFiles, AnExistingFileKeepsItsFlavour) {
 
 const std::string kDochost = std::string(ASGARD_BINARY_DIR) + "/host-shim/dochost";
 
-struct Exit {
-  int status = -1;
-  std::string out;
-};
-
-Exit Exec(const std::string& command) {
-  Exit r;
-  FILE* p = popen((command + " 2>&1").c_str(), "r");
-  char buf[4096];
-  size_t n;
-  while ((n = fread(buf, 1, sizeof buf, p)) > 0) r.out.append(buf, n);
-  const int s = pclose(p);
-  r.status = WIFEXITED(s) ? WEXITSTATUS(s) : -1;
-  return r;
-}
+using asgard::testing::Exec;
+using Exit = asgard::testing::Result;
 
 std::string Memo(const std::string& subject, const std::string& paragraph) {
   return "DOCUMENT CMEMO\n<CMEMO>\n<TO>{Whom it may concern}</TO>\n<SUBJECT>{" + subject +
