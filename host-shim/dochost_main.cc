@@ -254,6 +254,10 @@ struct Host {
         if (a.times[k] <= poster_t + 1e-9) a.poster = static_cast<int>(k);
       }
       a.live = all_live;
+      if (item.restarted)
+        Warn(o.in + ": animation " + std::to_string(item.index) + ": " + item.restart_reason +
+             "; it was restarted once");
+      if (!all_live) Report(item);  // the page falls back to the poster: say why
     }
     if (!a.live) {
       a.frames.clear();
@@ -359,7 +363,10 @@ int RunVerb(Host& h) {
     bool live = false;
     const Picture p = h.doc->Frame(item, ASGARD_DEVICE_PAGE, item.width * 2, item.height * 2,
                                    h.TimeFor(item), h.Flags(), &live);
-    if (live) h.doc->SetPoster(item, p);
+    if (!live)  // the slave died or failed: the stored poster is not refreshed
+      return h.Fail(o.in + ": animation " + std::to_string(item.index) +
+                    ": not recomputed: " + item.message);
+    h.doc->SetPoster(item, p);
     if (!o.quiet)
       std::cout << "animation " << item.index << ": recomputed: " << item.message << "\n";
     return h.Write(o.out.empty() ? o.in : o.out);

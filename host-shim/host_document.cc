@@ -93,10 +93,34 @@ std::string EncodePng(const Picture& p) {
   return out;
 }
 
-std::optional<Picture> DecodePng(const std::string& png) {
+std::optional<Picture> DecodePng(const std::string& png, std::string* why) {
+  // The size is read from the header before anything is decoded: a few
+  // bytes of PNG can claim gigapixels.
+  const auto* b = reinterpret_cast<const unsigned char*>(png.data());
+  if (png.size() < 24 || png.compare(0, 8, "\x89PNG\r\n\x1a\n") != 0 ||
+      png.compare(12, 4, "IHDR") != 0) {
+    if (why) *why = "not a PNG picture";
+    return std::nullopt;
+  }
+  auto u32 = [&](size_t at) {
+    return (uint32_t{b[at]} << 24) | (uint32_t{b[at + 1]} << 16) | (uint32_t{b[at + 2]} << 8) |
+           b[at + 3];
+  };
+  const uint32_t w = u32(16), h = u32(20);
+  if (w == 0 || h == 0 || w > kMaxPictureSide || h > kMaxPictureSide ||
+      uint64_t{w} * h > kMaxPicturePixels) {
+    if (why)
+      *why = "the picture is " + std::to_string(w) + " × " + std::to_string(h) +
+             " pixels, above the limit of " + std::to_string(kMaxPictureSide) + " per side and " +
+             std::to_string(kMaxPicturePixels) + " pixels";
+    return std::nullopt;
+  }
   PngSource src{&png};
   cairo_surface_t* s = cairo_image_surface_create_from_png_stream(ReadPng, &src);
   if (cairo_surface_status(s) != CAIRO_STATUS_SUCCESS) {
+    if (why)
+      *why =
+          std::string("cannot decode the PNG: ") + cairo_status_to_string(cairo_surface_status(s));
     cairo_surface_destroy(s);
     return std::nullopt;
   }
@@ -194,11 +218,16 @@ void HostDocument::FindItems(std::vector<std::string>* warnings) {
       if (siblings[i].IsElement("POSTER") && !siblings[i].children.empty()) {
         for (const Node& t : siblings[i].children) {
           if (t.kind != NodeKind::kText) continue;
-          if (auto png = document::Base64Decode(t.Text()))
-            if (auto pic = DecodePng(*png)) {
-              item.poster = *pic;
-              item.poster_from_document = true;
-            }
+          std::string why = "its text is not base64";
+          std::optional<Picture> pic;
+          if (auto png = document::Base64Decode(t.Text())) pic = DecodePng(*png, &why);
+          if (pic) {
+            item.poster = *pic;
+            item.poster_from_document = true;
+          } else if (warnings) {
+            warnings->push_back(options_.name + ":" + std::to_string(t.line) + ":" +
+                                std::to_string(t.column) + ": <POSTER>: ignored: " + why);
+          }
         }
       }
       break;
@@ -339,7 +368,16 @@ Picture HostDocument::Frame(Embedded& item, int device, int width, int height, d
   asgard_frame f{};
   f.struct_size = sizeof f;
   const int32_t s = api->frame(it->second, t, &f, &e);
-  if (s != ASGARD_OK) Fail(item, e);
+  if (s != ASGARD_OK) {
+    Fail(item, e);
+    // A slave that died is restarted once (and simulates again) before the
+    // animation falls back to its poster.
+    if (item.status.state == ASGARD_NODE_CRASHED && !item.restarted) {
+      item.restarted = true;
+      item.restart_reason = item.message;
+      if (Restart(item)) return Frame(item, device, width, height, t, flags, live);
+    }
+  }
   if (!f.pixels) return item.poster;
   Picture p;
   p.width = f.width;

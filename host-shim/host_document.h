@@ -16,6 +16,7 @@
 
 #include <cairo.h>
 
+#include <cstdint>
 #include <functional>
 #include <map>
 #include <optional>
@@ -38,7 +39,12 @@ struct Picture {
 std::string EncodePng(const Picture& picture);
 // A Cairo RGB24 image surface with the picture's pixels; the caller destroys it.
 cairo_surface_t* PictureSurface(const Picture& picture);
-std::optional<Picture> DecodePng(const std::string& png);
+// Pictures larger than this are refused before decoding (posters come from
+// documents, and a small PNG can claim gigapixels).
+inline constexpr uint32_t kMaxPictureSide = 8192;
+inline constexpr uint64_t kMaxPicturePixels = uint64_t{4096} * 4096;
+// nullopt (and `why`, when given) for anything but a PNG within the limits.
+std::optional<Picture> DecodePng(const std::string& png, std::string* why = nullptr);
 
 struct Embedded {
   int index = 0;             // 1-based, document order
@@ -51,6 +57,8 @@ struct Embedded {
   std::string message;            // status line for captions
   int width = 360, height = 240;  // presentation's desired size, points
   bool simulated = false;
+  bool restarted = false;      // the slave died while drawing and was restarted once
+  std::string restart_reason;  // how it died then
   double t0 = 0, t1 = 0, frame_rate = protocol::kDefaultFrameRate;
   Picture poster;  // from the document or the last frame drawn
   bool poster_from_document = false;

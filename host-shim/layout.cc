@@ -3,8 +3,9 @@
 // Design: every text block is measured with a PangoLayout made from one
 // font-map context at 72 dpi with hinted metrics off, so a block has the same
 // size in points on every device (PDF, PNG at any resolution) and pagination
-// is done once.  Blocks never split across pages (paragraphs here are short);
-// a block taller than a page is placed alone on its page.  Embedded regions
+// is done once.  A paragraph taller than a page is cut at line boundaries
+// into pieces that each fit a page; other blocks never split, and one taller
+// than a page is placed alone on its page.  Embedded regions
 // are scaled down to the text width when their desired size is wider.
 #include "host-shim/layout.h"
 
@@ -132,6 +133,19 @@ Fonts& SharedFonts() {
   return fonts;
 }
 
+// Text Pango can show: invalid UTF-8 and NUL bytes become U+FFFD (Pango
+// drops a whole text that is not valid UTF-8, and a NUL would end it).
+std::string Showable(const std::string& text) {
+  std::string s = text;
+  for (size_t i = 0; (i = s.find('\0', i)) != std::string::npos; i += 3)
+    s.replace(i, 1, "\xef\xbf\xbd");
+  if (g_utf8_validate(s.data(), static_cast<gssize>(s.size()), nullptr)) return s;
+  gchar* valid = g_utf8_make_valid(s.data(), static_cast<gssize>(s.size()));
+  std::string out(valid);
+  g_free(valid);
+  return out;
+}
+
 // A layout for a text block, `width` points wide.  Caller unrefs.
 PangoLayout* MakeLayout(const Block& b, double width) {
   PangoLayout* layout = pango_layout_new(SharedFonts().context);
@@ -145,8 +159,8 @@ PangoLayout* MakeLayout(const Block& b, double width) {
   pango_layout_set_width(layout, static_cast<int>(width * PANGO_SCALE));
   pango_layout_set_wrap(layout, PANGO_WRAP_WORD_CHAR);
   if (b.kind == Block::kField) {
-    char* label = g_markup_escape_text(b.label.c_str(), -1);
-    char* text = g_markup_escape_text(b.text.c_str(), -1);
+    char* label = g_markup_escape_text(Showable(b.label).c_str(), -1);
+    char* text = g_markup_escape_text(Showable(b.text).c_str(), -1);
     const std::string markup = std::string("<b>") + label + ":</b>\t" + text;
     g_free(label);
     g_free(text);
@@ -156,7 +170,8 @@ PangoLayout* MakeLayout(const Block& b, double width) {
     pango_tab_array_free(tabs);
   } else {
     if (b.kind == Block::kParagraph) pango_layout_set_justify(layout, TRUE);
-    pango_layout_set_text(layout, b.text.c_str(), -1);
+    const std::string text = Showable(b.text);
+    pango_layout_set_text(layout, text.c_str(), static_cast<int>(text.size()));
   }
   return layout;
 }
@@ -195,6 +210,10 @@ void DrawRegion(cairo_t* cr, const Placed& p, const RegionContent& content) {
   caption.text = content.caption;
   PangoLayout* layout = MakeLayout(caption, p.w);
   pango_layout_set_alignment(layout, PANGO_ALIGN_CENTER);
+  // The caption keeps to its two lines (a long error list ends in "…"; the
+  // whole of it is on stderr) instead of running over the text below.
+  pango_layout_set_ellipsize(layout, PANGO_ELLIPSIZE_END);
+  pango_layout_set_height(layout, -2);
   cairo_move_to(cr, p.x, p.y + p.h + kCaptionGap);
   cairo_set_source_rgb(cr, 0.35, 0.36, 0.4);
   pango_cairo_show_layout(cr, layout);
@@ -211,10 +230,59 @@ std::vector<Block> Blocks(const HostDocument& doc) {
   return out;
 }
 
-std::vector<Page> Paginate(const std::vector<Block>& blocks, const HostDocument& doc,
+// Paragraphs taller than a page, cut at line boundaries into pieces that
+// each fit on one (a long paragraph used to be cut off at the page's foot).
+static std::vector<Block> SplitTallParagraphs(const std::vector<Block>& blocks, double width,
+                                              double page_height) {
+  std::vector<Block> out;
+  for (const Block& b : blocks) {
+    if (b.kind != Block::kParagraph) {
+      out.push_back(b);
+      continue;
+    }
+    Block rest = b;
+    rest.text = Showable(rest.text);  // the text the layout's byte indices refer to
+    for (;;) {
+      PangoLayout* layout = MakeLayout(rest, width);
+      if (LayoutHeight(layout) <= page_height) {
+        g_object_unref(layout);
+        out.push_back(rest);
+        break;
+      }
+      // The first line that does not end on this page starts the next piece.
+      int cut = -1;
+      PangoLayoutIter* it = pango_layout_get_iter(layout);
+      do {
+        PangoRectangle logical;
+        pango_layout_iter_get_line_extents(it, nullptr, &logical);
+        const double bottom = static_cast<double>(logical.y + logical.height) / PANGO_SCALE;
+        if (bottom > page_height) {
+          cut = pango_layout_iter_get_index(it);
+          break;
+        }
+      } while (pango_layout_iter_next_line(it));
+      pango_layout_iter_free(it);
+      g_object_unref(layout);
+      if (cut <= 0 || static_cast<size_t>(cut) >= rest.text.size()) {
+        out.push_back(rest);  // a single line taller than a page: nothing to cut
+        break;
+      }
+      Block piece = rest;
+      piece.text = rest.text.substr(0, static_cast<size_t>(cut));
+      while (!piece.text.empty() && piece.text.back() == ' ') piece.text.pop_back();
+      out.push_back(piece);
+      rest.text = rest.text.substr(static_cast<size_t>(cut));
+    }
+  }
+  return out;
+}
+
+std::vector<Page> Paginate(const std::vector<Block>& all_blocks, const HostDocument& doc,
                            const PageStyle& style) {
   std::vector<Page> pages(1);
   const double text_width = style.width - 2 * style.margin;
+  const std::vector<Block> blocks =
+      SplitTallParagraphs(all_blocks, text_width, style.height - 2 * style.margin);
   double y = style.margin;
   Block::Kind previous = Block::kTitle;
   bool first = true;

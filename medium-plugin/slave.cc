@@ -18,6 +18,7 @@
 #include <time.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cerrno>
 #include <cstring>
 
@@ -188,10 +189,18 @@ CallResult SlaveProcess::Call(const std::string& method, const json& params,
   if (!Send(request.dump(-1, ' ', false, json::error_handler_t::replace)))
     return died("(the request '" + method + "' could not be sent)");
   const int64_t silence = static_cast<int64_t>(timeout_ * 1000);
+  // Progress notifications extend the silence deadline, never this one.
+  const int64_t hard_deadline = NowMs() + silence * kOverallTimeoutFactor;
   int64_t deadline = NowMs() + silence;
   for (;;) {
     unsigned char head[4];
     int r = ReadExact(reinterpret_cast<char*>(head), 4, deadline);
+    if (r < 0 && NowMs() >= hard_deadline)
+      return fail(CallStatus::kTimeout,
+                  "asgard-core did not finish '" + method + "' within " +
+                      Seconds(timeout_ * kOverallTimeoutFactor) + " s (" +
+                      std::to_string(kOverallTimeoutFactor) +
+                      " times the watchdog timeout, whatever its progress) and was stopped");
     if (r < 0)
       return fail(CallStatus::kTimeout, "asgard-core did not answer '" + method + "' within " +
                                             Seconds(timeout_) + " s and was stopped");
@@ -206,6 +215,10 @@ CallResult SlaveProcess::Call(const std::string& method, const json& params,
       return fail(CallStatus::kTimeout,
                   "asgard-core stopped in the middle of a message and was stopped");
     if (r == 0) return died("in the middle of a message");
+    if (protocol::JsonNestingDepth(body) > protocol::kMaxJsonDepth)
+      return fail(CallStatus::kProtocol,
+                  "protocol error: asgard-core sent a message nested more than " +
+                      std::to_string(protocol::kMaxJsonDepth) + " deep; it was stopped");
     const json message = json::parse(body, nullptr, false);
     if (message.is_discarded() || !message.is_object())
       return fail(CallStatus::kProtocol,
@@ -218,7 +231,7 @@ CallResult SlaveProcess::Call(const std::string& method, const json& params,
         if (progress && p.value("fraction", json()).is_number())
           progress(p["fraction"].get<double>(), p.value("time", 0.0));
       }
-      deadline = NowMs() + silence;
+      deadline = std::min(NowMs() + silence, hard_deadline);
       continue;
     }
     if (!message.contains("id") || message["id"] != id) {

@@ -6,7 +6,8 @@
 // Messages are a 4-byte big-endian length and a JSON-RPC 2.0 object.  Call()
 // sends one request and waits for its answer, handing progress notifications
 // to a callback.  The watchdog is the poll() timeout: silence longer than
-// `timeout` seconds (progress notifications reset it) kills the slave.  A dead
+// `timeout` seconds (progress notifications reset it) kills the slave, and so
+// does a call lasting longer than kOverallTimeoutFactor × `timeout` in all.  A dead
 // slave (EOF, EPIPE — writes use MSG_NOSIGNAL so the host never gets SIGPIPE),
 // a hung one, or a malformed message all end in a Failure status with a
 // message; the process is then reaped and the object stays usable for
@@ -28,6 +29,11 @@ namespace asgard::medium {
 inline constexpr size_t kFrameMemory =
     size_t{protocol::kMaxRenditionSide} * protocol::kMaxRenditionSide * 4;
 using protocol::kMaxMessage;
+
+// The longest one call may take, in multiples of the watchdog timeout:
+// progress notifications reset the watchdog but cannot extend this deadline,
+// so a simulation that progresses forever is still stopped.
+inline constexpr int kOverallTimeoutFactor = 4;
 
 enum class CallStatus { kOk, kRemoteError, kDied, kTimeout, kProtocol, kNotRunning };
 

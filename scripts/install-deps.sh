@@ -10,6 +10,8 @@ set -euo pipefail
 packages=(
   # toolchain
   g++ cmake ninja-build pkg-config clang-format
+  # libFuzzer and the sanitizers (scripts/fuzz.sh, scripts/sanitize.sh)
+  clang-14 libclang-rt-14-dev
   # core
   tcl8.6-dev libeigen3-dev libsuitesparse-dev libqhull-dev libccd-dev
   nlohmann-json3-dev

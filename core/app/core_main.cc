@@ -22,9 +22,13 @@
 // graphical edit and answers with the text patches.
 //
 // Test hooks (environment ASGARD_CORE_FAULT): "hang-on-simulate" stops
-// answering when asked to simulate; "garbage-on-frame" answers a frame request
+// answering when asked to simulate; "endless-progress-on-simulate" reports
+// progress every 50 ms and never finishes; "exit-on-frame" exits when asked for a
+// frame; "garbage-on-frame" answers a frame request
 // with bytes that are not JSON; "exit-on-load" exits at the first load.
+#include <fcntl.h>
 #include <sys/mman.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
 #include <chrono>
@@ -67,7 +71,7 @@ device}, close_rendition {rendition}, frame {rendition, t, handles?, wire?},
 command {line}, shutdown {}.
 
 Exit status 0 after shutdown or end of input, 2 on bad usage or a broken
-stream.
+stream, 3 when it ran out of memory.
 )";
 
 // Moves all n bytes with `io` (read or write), retrying on EINTR; false at
@@ -111,6 +115,15 @@ class Slave {
   Slave(int in, int out, uint8_t* shm, size_t shm_size)
       : in_(in), out_(out), shm_(shm), shm_size_(shm_size) {
     if (const char* f = std::getenv("ASGARD_CORE_FAULT")) fault_ = f;
+    // With ASGARD_CORE_FAULT_ONCE=FILE only the first slave misbehaves: the
+    // one that creates FILE.
+    if (const char* once = std::getenv("ASGARD_CORE_FAULT_ONCE"); once && !fault_.empty()) {
+      const int fd = ::open(once, O_CREAT | O_EXCL | O_WRONLY, 0600);
+      if (fd < 0)
+        fault_.clear();
+      else
+        ::close(fd);
+    }
   }
 
   int Loop() {
@@ -143,8 +156,16 @@ class Slave {
           {"error", {{"code", code}, {"message", message}}}});
   }
 
-  // False when the process should end (shutdown).
+ public:
+  // Answers one message body; false when the process should end (shutdown).
+  // Public for the protocol fuzz target (tests/fuzz/fuzz_protocol.cc).
   bool Handle(const std::string& body) {
+    if (protocol::JsonNestingDepth(body) > protocol::kMaxJsonDepth) {
+      SendError(nullptr, kInvalidRequest,
+                "invalid request: arrays and objects nested more than " +
+                    std::to_string(protocol::kMaxJsonDepth) + " deep");
+      return true;
+    }
     const json request = json::parse(body, nullptr, false);
     if (request.is_discarded()) {
       SendError(nullptr, kParseError, "parse error: the message is not JSON");
@@ -176,6 +197,7 @@ class Slave {
     return true;
   }
 
+ private:
   static std::string Text(const json& params) {
     if (!params.contains("text") || !params["text"].is_string())
       throw RpcError{kInvalidParams, "invalid params: 'text' must be a string"};
@@ -231,8 +253,8 @@ class Slave {
           {{"line", d.span.line}, {"column", d.span.column}, {"message", d.message}});
     json bodies = json::array();
     for (const auto& b : check.scene.bodies) bodies.push_back(b.name);
-    return {{"ok", check.ok}, {"diagnostics", diagnostics}, {"bodies", bodies},
-            {"changes", changes}};
+    return {
+        {"ok", check.ok}, {"diagnostics", diagnostics}, {"bodies", bodies}, {"changes", changes}};
   }
 
   // A graphical edit: {element, param, values} → the text patches (byte
@@ -241,8 +263,8 @@ class Slave {
   json Edit(const json& params) {
     if (!session_) throw RpcError{kSceneError, "no scene is loaded"};
     if (!params.contains("element") || !params["element"].is_string() ||
-        !params.contains("param") || !params["param"].is_string() ||
-        !params.contains("values") || !params["values"].is_array())
+        !params.contains("param") || !params["param"].is_string() || !params.contains("values") ||
+        !params["values"].is_array())
       throw RpcError{kInvalidParams, "invalid params: edit needs element, param and values"};
     std::vector<double> values;
     for (const auto& v : params["values"]) {
@@ -253,9 +275,13 @@ class Slave {
     if (!r.ok) throw RpcError{kSceneError, r.error};
     json edits = json::array();
     for (const auto& e : r.edits)
-      edits.push_back({{"begin", e.begin}, {"end", e.end}, {"text", e.text},
-                       {"line", e.line}, {"column", e.column},
-                       {"end_line", e.end_line}, {"end_column", e.end_column}});
+      edits.push_back({{"begin", e.begin},
+                       {"end", e.end},
+                       {"text", e.text},
+                       {"line", e.line},
+                       {"column", e.column},
+                       {"end_line", e.end_line},
+                       {"end_column", e.end_column}});
     text_ = session_->text();
     sampler_.reset();
     for (auto& [k, r2] : renditions_) r2.renderer.reset();
@@ -265,6 +291,14 @@ class Slave {
   json Simulate(const json& id) {
     if (fault_ == "hang-on-simulate")
       for (;;) std::this_thread::sleep_for(std::chrono::hours(1));
+    if (fault_ == "endless-progress-on-simulate") {
+      for (double f = 0;; f = std::min(f + 1e-6, 0.99)) {
+        Send({{"jsonrpc", "2.0"},
+              {"method", "progress"},
+              {"params", {{"id", id}, {"time", f}, {"fraction", f}}}});
+        std::this_thread::sleep_for(std::chrono::milliseconds(50));
+      }
+    }
     sampler_.reset();
     if (!session_) session_ = std::make_unique<session::Session>(text_);
     auto last = std::chrono::steady_clock::now() - std::chrono::seconds(1);
@@ -332,6 +366,7 @@ class Slave {
       throw RpcError{kInvalidParams, "invalid params: no rendition " + std::to_string(id)};
     if (!sampler_) throw RpcError{kNotSimulated, "the scene has not been simulated"};
     Rendition& r = it->second;
+    if (fault_ == "exit-on-frame") std::_Exit(9);
     if (fault_ == "garbage-on-frame") {
       const char junk[] = "\x00\x00\x00\x05{{{{{";
       WriteAll(out_, junk, sizeof junk - 1);
@@ -438,6 +473,19 @@ int main(int argc, char** argv) {
   }
   uint8_t* shm = nullptr;
   if (shm_fd >= 0 && shm_size > 0) {
+    // Mapping past the end of the object would raise SIGBUS at the first
+    // frame written there.
+    struct stat st {};
+    if (::fstat(static_cast<int>(shm_fd), &st) != 0) {
+      std::cerr << "asgard-core: cannot use the shared frame memory (--shm-fd " << shm_fd
+                << "): " << std::strerror(errno) << "\n";
+      return 2;
+    }
+    if (st.st_size < shm_size) {
+      std::cerr << "asgard-core: --shm-size " << shm_size
+                << " is larger than the shared frame memory (" << st.st_size << " bytes)\n";
+      return 2;
+    }
     void* p = ::mmap(nullptr, static_cast<size_t>(shm_size), PROT_READ | PROT_WRITE, MAP_SHARED,
                      static_cast<int>(shm_fd), 0);
     if (p == MAP_FAILED) {
@@ -447,6 +495,14 @@ int main(int argc, char** argv) {
     }
     shm = static_cast<uint8_t*>(p);
   }
-  Slave slave(in, out, shm, static_cast<size_t>(shm_size));
-  return slave.Loop();
+  try {
+    Slave slave(in, out, shm, static_cast<size_t>(shm_size));
+    return slave.Loop();
+  } catch (const std::bad_alloc&) {
+    std::cerr << "asgard-core: out of memory\n";
+    return 3;
+  } catch (const std::exception& e) {
+    std::cerr << "asgard-core: internal error: " << e.what() << "\n";
+    return 3;
+  }
 }

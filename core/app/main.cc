@@ -37,7 +37,8 @@ using asgard::app::TakeFile;
 using asgard::app::Usage;
 using asgard::pipeline::Frames;
 
-constexpr const char* kMainHelp = R"(asgard — physically-based 3D animation: simulate Asgard scene scripts
+constexpr const char* kMainHelp =
+    R"(asgard — physically-based 3D animation: simulate Asgard scene scripts
 
 Usage:
   asgard check FILE            check a scene for errors
@@ -209,10 +210,10 @@ bool WriteJson(const std::string& path, const std::string& scene_file, const Fra
 void PrintCounters(std::ostream& out, const asgard::solver::Counters& c) {
   out << "  steps " << c.steps << " (rejected " << c.rejected_steps << ", explicit "
       << c.explicit_steps << ", TR-BDF2 " << c.trbdf2_steps << ", method switches "
-      << c.method_switches << "), rhs evaluations " << c.rhs_evaluations << ", jacobians " << c.jacobian_evaluations
-      << ", factorizations " << c.factorizations << ", newton iterations " << c.newton_iterations
-      << " (failures " << c.newton_failures << "), truncated steps " << c.truncated_steps
-      << ", restarts " << c.restarts << "\n";
+      << c.method_switches << "), rhs evaluations " << c.rhs_evaluations << ", jacobians "
+      << c.jacobian_evaluations << ", factorizations " << c.factorizations << ", newton iterations "
+      << c.newton_iterations << " (failures " << c.newton_failures << "), truncated steps "
+      << c.truncated_steps << ", restarts " << c.restarts << "\n";
 }
 
 void PrintStats(const asgard::pipeline::Run& run) {
@@ -245,10 +246,11 @@ void PrintStats(const asgard::pipeline::Run& run) {
   PrintCounters(std::cout, sim.totals());
   if (run.collisions) {
     const auto& c = run.collisions->counters();
-    std::cout << "collisions: windows " << c.windows << ", broad-phase pairs " << c.broad_phase_pairs
-              << ", narrow-phase queries " << c.narrow_phase_queries << ", distance queries "
-              << c.distance_queries << ", impacts " << run.collisions->impacts().size()
-              << " (applied " << c.impacts << ", undone " << c.invalidated_impacts << ")\n";
+    std::cout << "collisions: windows " << c.windows << ", broad-phase pairs "
+              << c.broad_phase_pairs << ", narrow-phase queries " << c.narrow_phase_queries
+              << ", distance queries " << c.distance_queries << ", impacts "
+              << run.collisions->impacts().size() << " (applied " << c.impacts << ", undone "
+              << c.invalidated_impacts << ")\n";
     for (const auto& imp : run.collisions->impacts())
       std::cout << "  t=" << imp.t << " " << eq.bodies[imp.a].name << " - " << eq.bodies[imp.b].name
                 << " impulse " << imp.impulse << "\n";
@@ -373,10 +375,14 @@ int Simulate(const std::vector<std::string>& args) {
       auto v = value(a.c_str());
       double d;
       if (!v || !ParseNumber(*v, d)) return Usage(a + " needs a number", kSimulateHelp);
-      if (a == "--until") opts.until = d;
-      else if (d <= 0) return Usage(a + " must be positive", kSimulateHelp);
-      else if (a == "--rtol") rtol = d;
-      else atol = d;
+      if (a == "--until")
+        opts.until = d;
+      else if (d <= 0)
+        return Usage(a + " must be positive", kSimulateHelp);
+      else if (a == "--rtol")
+        rtol = d;
+      else
+        atol = d;
     } else if (a == "--out") {
       auto v = value("--out");
       if (!v) return Usage("--out needs a file name", kSimulateHelp);
@@ -385,11 +391,16 @@ int Simulate(const std::vector<std::string>& args) {
         return Usage("--out: the file name must end in .csv or .json", kSimulateHelp);
     } else if (a == "--method") {
       auto v = value("--method");
-      if (v == "auto") opts.solver.method = asgard::solver::SolverOptions::Method::kAuto;
-      else if (v == "tr") opts.solver.method = asgard::solver::SolverOptions::Method::kTrapezoidal;
-      else if (v == "trbdf2") opts.solver.method = asgard::solver::SolverOptions::Method::kTrBdf2;
-      else if (v == "dp5") opts.solver.method = asgard::solver::SolverOptions::Method::kExplicit;
-      else return Usage("--method must be auto, dp5, tr or trbdf2", kSimulateHelp);
+      if (v == "auto")
+        opts.solver.method = asgard::solver::SolverOptions::Method::kAuto;
+      else if (v == "tr")
+        opts.solver.method = asgard::solver::SolverOptions::Method::kTrapezoidal;
+      else if (v == "trbdf2")
+        opts.solver.method = asgard::solver::SolverOptions::Method::kTrBdf2;
+      else if (v == "dp5")
+        opts.solver.method = asgard::solver::SolverOptions::Method::kExplicit;
+      else
+        return Usage("--method must be auto, dp5, tr or trbdf2", kSimulateHelp);
     } else if (a == "--stats") {
       stats = true;
     } else if (a == "--quiet") {
@@ -429,7 +440,8 @@ int Simulate(const std::vector<std::string>& args) {
   }
   asgard::pipeline::Solve(run, opts);
   PrintDiagnostics(file, run.diagnostics);
-  if (!run.solver_error.empty()) std::cerr << "asgard: " << file << ": " << run.solver_error << "\n";
+  if (!run.solver_error.empty())
+    std::cerr << "asgard: " << file << ": " << run.solver_error << "\n";
   if (!run.ok) return 1;
   const Frames frames = asgard::pipeline::SampleFrames(*run.equations, *run.simulation,
                                                        asgard::pipeline::FrameRate(run.scene));
@@ -465,7 +477,7 @@ int Simulate(const std::vector<std::string>& args) {
 
 }  // namespace
 
-int main(int argc, char** argv) {
+int Main(int argc, char** argv) {
   std::vector<std::string> args(argv + 1, argv + argc);
   if (args.empty()) {
     std::cerr << kMainHelp;
@@ -474,12 +486,18 @@ int main(int argc, char** argv) {
   const std::string cmd = args[0];
   args.erase(args.begin());
   if (cmd == "-h" || cmd == "--help" || cmd == "help") {
-    if (!args.empty() && args[0] == "check") std::cout << kCheckHelp;
-    else if (!args.empty() && args[0] == "simulate") std::cout << kSimulateHelp;
-    else if (!args.empty() && args[0] == "edit") std::cout << kEditHelp;
-    else if (!args.empty() && args[0] == "render") std::cout << asgard::app::kRenderHelp;
-    else if (!args.empty() && args[0] == "export") std::cout << asgard::app::kExportHelp;
-    else std::cout << kMainHelp;
+    if (!args.empty() && args[0] == "check")
+      std::cout << kCheckHelp;
+    else if (!args.empty() && args[0] == "simulate")
+      std::cout << kSimulateHelp;
+    else if (!args.empty() && args[0] == "edit")
+      std::cout << kEditHelp;
+    else if (!args.empty() && args[0] == "render")
+      std::cout << asgard::app::kRenderHelp;
+    else if (!args.empty() && args[0] == "export")
+      std::cout << asgard::app::kExportHelp;
+    else
+      std::cout << kMainHelp;
     return 0;
   }
   if (cmd == "check") return Check(args);
@@ -488,4 +506,20 @@ int main(int argc, char** argv) {
   if (cmd == "render") return asgard::app::RenderCommand(args);
   if (cmd == "export") return asgard::app::ExportCommand(args);
   return Usage("unknown command '" + cmd + "'", kMainHelp);
+}
+
+// Nothing escapes as a signal: running out of memory (a run asked for more
+// frames or steps than fit) is an error message and exit status 1.
+int main(int argc, char** argv) {
+  try {
+    return Main(argc, argv);
+  } catch (const std::bad_alloc&) {
+    std::cerr << "asgard: error: out of memory (the run needs more memory than there is; "
+                 "fewer frames, a larger -maxstep or a shorter -finish may help)\n";
+  } catch (const std::length_error& e) {
+    std::cerr << "asgard: error: out of memory (a result would be too large: " << e.what() << ")\n";
+  } catch (const std::exception& e) {
+    std::cerr << "asgard: internal error: " << e.what() << "\n";
+  }
+  return 1;
 }

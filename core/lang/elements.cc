@@ -14,7 +14,9 @@
 
 #include <tcl.h>
 
+#include <algorithm>
 #include <cctype>
+#include <cmath>
 #include <memory>
 
 #include "core/lang/options.h"
@@ -118,6 +120,48 @@ void FillBase(const Invocation& inv, scene::ElementBase& base) {
   base.run_count = 1;
 }
 
+// Time spans and step sizes a run can actually cover, checked here so that
+// `check` refuses what would make `simulate` loop forever or exhaust memory.
+constexpr double kMaxFrames = 1e7;
+constexpr double kMaxSteps = 1e9;
+// Steps must stay distinguishable: the span at least this fraction of the
+// largest time's magnitude (a double resolves about 1e-16 of it).
+constexpr double kMinRelativeSpan = 1e-9;
+
+void ValidateSpan(const Options& o, const scene::Simulator& s) {
+  auto where = [&](std::initializer_list<const char*> names) {
+    for (const char* n : names)
+      if (o.Has(n)) return o.Get(n)->arg;
+    return -1;
+  };
+  const double span = s.finish - s.start;
+  if (!std::isfinite(span)) {
+    throw ElementError{"simulator: the time span from -start (" + FormatNumber(s.start) +
+                           ") to -finish (" + FormatNumber(s.finish) + ") is not finite",
+                       where({"finish", "start"})};
+  }
+  const double magnitude = std::max(std::abs(s.start), std::abs(s.finish));
+  if (span < kMinRelativeSpan * magnitude) {
+    throw ElementError{"simulator: the time span " + FormatNumber(span) +
+                           " is too short to be resolved at times near " + FormatNumber(magnitude) +
+                           " (steps would not advance the time)",
+                       where({"finish", "start"})};
+  }
+  if (span * s.frame_rate > kMaxFrames) {
+    throw ElementError{"simulator: " + FormatNumber(span * s.frame_rate) +
+                           " frames (the time span " + FormatNumber(span) + " times -frames " +
+                           FormatNumber(s.frame_rate) + ") is above the limit of " +
+                           FormatNumber(kMaxFrames),
+                       where({"frames", "finish", "start"})};
+  }
+  if (s.max_step && span / *s.max_step > kMaxSteps) {
+    throw ElementError{"simulator: -maxstep " + FormatNumber(*s.max_step) +
+                           " would take more than " + FormatNumber(kMaxSteps) +
+                           " steps over the time span " + FormatNumber(span),
+                       where({"maxstep"})};
+  }
+}
+
 void SimulatorCommand(EvalContext& ctx, const Invocation& inv, std::string&) {
   Options o(inv, 1, {"start", "finish", "step", "maxstep", "rtol", "atol", "collisions", "frames"});
   scene::Simulator s;
@@ -136,6 +180,7 @@ void SimulatorCommand(EvalContext& ctx, const Invocation& inv, std::string&) {
   s.atol = o.Positive("atol");
   s.collisions = o.Bool("collisions").value_or(true);
   s.frame_rate = o.Positive("frames").value_or(s.frame_rate);
+  ValidateSpan(o, s);
   RecordOptions(inv, o, s);
   ctx.scene.simulator = std::move(s);
 }

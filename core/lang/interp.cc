@@ -26,13 +26,16 @@
 //    "while executing" text of errorInfo.
 //  * Nothing here throws out of Evaluate; Tcl state never outlives it.
 #include <malloc.h>
+#include <setjmp.h>
 #include <tcl.h>
 
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <cstdarg>
 #include <cstdio>
 #include <mutex>
+#include <unordered_map>
 
 #include "core/lang/eval_context.h"
 #include "core/lang/lang.h"
@@ -45,10 +48,42 @@ constexpr size_t kMaxListElements = size_t{4} << 20;
 constexpr size_t kCheckEveryBytes = size_t{32} << 20;
 constexpr long kCheckEveryCommands = 4096;
 constexpr int kRecursionLimit = 400;
+// All the arguments of one command together, and the string a pure list
+// argument would become: a command over more than this is refused (values
+// past 2 GB abort Tcl, and a command's result is at most about the sum of
+// its arguments for everything but the commands bounded separately below).
+constexpr size_t kMaxCommandBytes = size_t{64} << 20;
+// Bound on a single command's output estimated from its arguments (string
+// map, regsub, join): far below Tcl's 2 GB value limit.
+constexpr size_t kMaxResultBytes = size_t{256} << 20;
+
+// Tcl aborts the process on a panic (a value past 2 GB that a check above
+// did not foresee, an allocation failure).  While a scene command runs, the
+// panic jumps back to the evaluation instead, which reports it and abandons
+// (leaks) the interpreters, whose state can no longer be trusted.
+thread_local sigjmp_buf* panic_target = nullptr;
+thread_local char panic_message[256];
+
+[[noreturn]] void ScenePanic(const char* format, ...) {
+  va_list ap;
+  va_start(ap, format);
+  std::vsnprintf(panic_message, sizeof panic_message, format, ap);
+  va_end(ap);
+  if (panic_target != nullptr) {
+    sigjmp_buf* target = panic_target;
+    panic_target = nullptr;
+    siglongjmp(*target, 1);
+  }
+  std::fprintf(stderr, "Tcl panic: %s\n", panic_message);
+  std::abort();
+}
 
 void InitTcl() {
   static std::once_flag once;
-  std::call_once(once, [] { Tcl_FindExecutable(nullptr); });
+  std::call_once(once, [] {
+    Tcl_SetPanicProc(ScenePanic);
+    Tcl_FindExecutable(nullptr);
+  });
 }
 
 size_t HeapInUse() {
@@ -59,7 +94,96 @@ size_t HeapInUse() {
 struct GuardState {
   EvalContext* ctx;
   bool memory_exceeded = false;
+  // String sizes of large pure lists already measured: (element count,
+  // element array) → bytes, so a loop over a big list is not quadratic.
+  struct Measured {
+    int count;
+    Tcl_Obj** elements;
+    size_t bytes;
+  };
+  std::unordered_map<Tcl_Obj*, Measured> measured;
 };
+
+const Tcl_ObjType* ListType() {
+  static const Tcl_ObjType* type = Tcl_GetObjType("list");
+  return type;
+}
+
+// The bytes of the string `o` has or would get (a pure list's string is
+// built from its elements'); stops counting past `cap`.  Other values
+// without a string (numbers, dicts, ...) count as small.
+size_t StringBytes(GuardState& guard, Tcl_Obj* o, size_t cap, int depth = 0) {
+  if (o->bytes != nullptr) return static_cast<size_t>(o->length);
+  if (o->typePtr != ListType() || depth > 64) return 32;
+  int n = 0;
+  Tcl_Obj** elements = nullptr;
+  if (Tcl_ListObjGetElements(nullptr, o, &n, &elements) != TCL_OK) return 32;
+  constexpr int kMemoFrom = 1024;
+  if (n >= kMemoFrom) {
+    auto it = guard.measured.find(o);
+    if (it != guard.measured.end() && it->second.count == n && it->second.elements == elements)
+      return it->second.bytes;
+  }
+  size_t bytes = 0;
+  for (int i = 0; i < n && bytes <= cap; ++i)
+    bytes += StringBytes(guard, elements[i], cap, depth + 1) + 3;  // braces and a space
+  if (n >= kMemoFrom) {
+    if (guard.measured.size() > 4096) guard.measured.clear();
+    guard.measured[o] = {n, elements, bytes};
+  }
+  return bytes;
+}
+
+std::string_view CommandName(Tcl_Obj* word) {
+  std::string_view name = Tcl_GetString(word);
+  if (name.substr(0, 2) == "::") name.remove_prefix(2);
+  return name;
+}
+
+// Commands whose result can be far larger than their arguments: a bound on
+// the result from the arguments, or 0 when there is nothing to fear.
+size_t ResultBound(GuardState& guard, int objc, Tcl_Obj* const objv[]) {
+  const std::string_view name = CommandName(objv[0]);
+  auto len = [&](int i) { return StringBytes(guard, objv[i], kMaxResultBytes); };
+  if (name == "join" && objc == 3) {
+    int n = 0;
+    if (Tcl_ListObjLength(nullptr, objv[1], &n) != TCL_OK) return 0;
+    return len(1) + static_cast<size_t>(n) * len(2);
+  }
+  if ((name == "string" || name == "tcl::string::map") && objc >= 3) {
+    const bool sub = name == "string";
+    if (sub && std::string_view(Tcl_GetString(objv[1])) != "map") return 0;
+    const int map = objc - 2, input = objc - 1;
+    int n = 0;
+    Tcl_Obj** pairs = nullptr;
+    if (Tcl_ListObjGetElements(nullptr, objv[map], &n, &pairs) != TCL_OK) return 0;
+    size_t longest = 1;
+    for (int i = 1; i < n; i += 2)
+      longest = std::max(longest, StringBytes(guard, pairs[i], kMaxResultBytes));
+    // Every input character can become the longest replacement at most.
+    return (len(input) + 1) * longest;
+  }
+  if (name == "regsub" && objc >= 4) {
+    // regsub ?switches? exp string subSpec ?varName?: every match (at most
+    // one per input character, and one more) becomes subSpec, with each &
+    // or \N the whole input at most.
+    int i = 1;
+    while (i < objc && Tcl_GetString(objv[i])[0] == '-') {
+      if (std::string_view(Tcl_GetString(objv[i++])) == "--") break;
+    }
+    const int input = i + 1;
+    if (input + 1 >= objc) return 0;
+    const std::string_view spec = Tcl_GetString(objv[input + 1]);
+    size_t refs = 0;
+    for (size_t k = 0; k < spec.size(); ++k)
+      if (spec[k] == '&' ||
+          (spec[k] == '\\' && k + 1 < spec.size() && spec[k + 1] >= '0' && spec[k + 1] <= '9'))
+        ++refs;
+    const size_t in = len(input);
+    return in + (in + 1) * (spec.size() + refs * in);
+  }
+  return 0;
+}
 
 void SetError(Tcl_Interp* interp, const std::string& message) {
   Tcl_SetObjResult(interp, Tcl_NewStringObj(message.data(), static_cast<int>(message.size())));
@@ -99,6 +223,11 @@ bool HugeFormat(int objc, Tcl_Obj* const objv[]) {
   return false;
 }
 
+std::string FirstWord(Tcl_Obj* word) {
+  std::string name(CommandName(word).substr(0, 40));
+  return name;
+}
+
 int GuardTrace(ClientData data, Tcl_Interp* interp, int, const char*, Tcl_Command, int objc,
                Tcl_Obj* const objv[]) {
   auto* guard = static_cast<GuardState*>(data);
@@ -108,10 +237,19 @@ int GuardTrace(ClientData data, Tcl_Interp* interp, int, const char*, Tcl_Comman
                          std::to_string(ctx.limits.memory_limit_mb) + " MB)");
     return TCL_ERROR;
   }
-  size_t bytes = 0;
+  size_t bytes = 0, strings = 0;
   for (int i = 0; i < objc; ++i) {
-    if (objv[i]->bytes == nullptr) continue;
+    if (objv[i]->bytes == nullptr) {
+      // A pure list: what its string would be, and its element array.
+      strings += StringBytes(*guard, objv[i], kMaxCommandBytes);
+      int n = 0;
+      if (objv[i]->typePtr == ListType() && Tcl_ListObjLength(nullptr, objv[i], &n) == TCL_OK)
+        bytes += static_cast<size_t>(n) * sizeof(Tcl_Obj*);
+      if (strings > kMaxCommandBytes) break;
+      continue;
+    }
     size_t len = static_cast<size_t>(objv[i]->length);
+    strings += len;
     if (len > kMaxValueBytes) {
       SetError(interp, "value of " + std::to_string(len) + " bytes is above the scene limit of " +
                            MegaBytes(kMaxValueBytes));
@@ -122,6 +260,19 @@ int GuardTrace(ClientData data, Tcl_Interp* interp, int, const char*, Tcl_Comman
         FindDeepBracket(std::string_view(objv[i]->bytes, len)) >= 0) {
       SetError(interp, "brackets nested more than " + std::to_string(kMaxBracketDepth) +
                            " deep are not allowed in scene scripts");
+      return TCL_ERROR;
+    }
+  }
+  if (strings > kMaxCommandBytes) {
+    SetError(interp, "the arguments of \"" + FirstWord(objv[0]) + "\" come to more than " +
+                         MegaBytes(kMaxCommandBytes) + " in all, above the scene limit");
+    return TCL_ERROR;
+  }
+  if (objc >= 2) {
+    if (const size_t bound = ResultBound(*guard, objc, objv); bound > kMaxResultBytes) {
+      SetError(interp, "the result of \"" + FirstWord(objv[0]) + "\" could reach " +
+                           std::to_string(bound) + " bytes, above the scene limit of " +
+                           MegaBytes(kMaxResultBytes));
       return TCL_ERROR;
     }
   }
@@ -327,19 +478,33 @@ class Interps {
     if (ctx.master != nullptr) ctx.child = Tcl_CreateSlave(ctx.master, "scene", 1);
   }
   ~Interps() {
-    if (ctx_.master != nullptr) Tcl_DeleteInterp(ctx_.master);
+    if (ctx_.master != nullptr && !abandoned) Tcl_DeleteInterp(ctx_.master);
     ctx_.master = nullptr;
     ctx_.child = nullptr;
   }
   Interps(const Interps&) = delete;
   Interps& operator=(const Interps&) = delete;
+  bool abandoned = false;  // after a Tcl panic: leaked, never touched again
 
  private:
   EvalContext& ctx_;
 };
 
+constexpr int kPanicked = -1000;
+
+// Tcl_EvalEx, or kPanicked when Tcl panicked during it.  Kept apart from
+// Run so that no C++ object lives between the setjmp and the longjmp.
+int EvalGuarded(Tcl_Interp* interp, const char* script, int length) {
+  static thread_local sigjmp_buf target;
+  if (sigsetjmp(target, 0) != 0) return kPanicked;
+  panic_target = &target;
+  const int rc = Tcl_EvalEx(interp, script, length, 0);
+  panic_target = nullptr;
+  return rc;
+}
+
 void Run(EvalContext& ctx) {
-  GuardState guard{&ctx};  // outlives the interpreters that call it
+  GuardState guard{&ctx, false, {}};  // outlives the interpreters that call it
   Interps interps(ctx);
   scene::SourceSpan whole = ctx.map.lines().Span(0, 0);
   if (ctx.child == nullptr) {
@@ -359,7 +524,16 @@ void Run(EvalContext& ctx) {
   for (size_t i = 0; i < top.size(); ++i) {
     ctx.current_top = static_cast<int>(i);
     const SourceCommand& cmd = ctx.map.commands()[top[i]];
-    int rc = Tcl_EvalEx(ctx.child, text.data() + cmd.span.begin, cmd.span.end - cmd.span.begin, 0);
+    int rc = EvalGuarded(ctx.child, text.data() + cmd.span.begin, cmd.span.end - cmd.span.begin);
+    if (rc == kPanicked) {
+      interps.abandoned = true;
+      ctx.AddError("scene exceeded the limits of the Tcl interpreter (" + FirstLine(panic_message) +
+                       "); evaluation stopped",
+                   ctx.map.ErrorSpan(static_cast<int>(i), cmd.span.line, "", false));
+      ctx.master = nullptr;
+      ctx.child = nullptr;
+      break;
+    }
     if (rc == TCL_OK) continue;
     if (rc == TCL_RETURN) break;  // `return` at top level ends the scene, as in a sourced file
     int rel = rc == TCL_ERROR ? ErrorLine(ctx.child, rc) : 1;

@@ -14,6 +14,7 @@
 #include <array>
 #include <cstddef>
 #include <cstdint>
+#include <string_view>
 
 namespace asgard::protocol {
 
@@ -41,6 +42,36 @@ inline constexpr int kMaxRenditionSide = 8192;
 // of video; the plugin and the host assume it until a slave reports the
 // scene's own rate.
 inline constexpr double kDefaultFrameRate = 30.0;
+
+// Deepest nesting of arrays and objects a message may have.  JSON parsers
+// (nlohmann's included) recurse once per level, so a message of a few
+// megabytes of '[' would otherwise exhaust the stack; no request or answer
+// of the protocol is deeper than a handful of levels.
+inline constexpr int kMaxJsonDepth = 64;
+
+// The deepest nesting of '[' and '{' in a JSON text, outside strings (a
+// linear scan, no recursion); stops counting once past `stop_at`.
+inline int JsonNestingDepth(std::string_view text, int stop_at = kMaxJsonDepth) {
+  int depth = 0, deepest = 0;
+  bool in_string = false;
+  for (size_t i = 0; i < text.size(); ++i) {
+    const char c = text[i];
+    if (in_string) {
+      if (c == '\\')
+        ++i;
+      else if (c == '"')
+        in_string = false;
+    } else if (c == '"') {
+      in_string = true;
+    } else if (c == '[' || c == '{') {
+      if (++depth > deepest) deepest = depth;
+      if (deepest > stop_at) return deepest;
+    } else if (c == ']' || c == '}') {
+      if (depth > 0) --depth;
+    }
+  }
+  return deepest;
+}
 
 // The 4-byte big-endian length that precedes every message.
 inline std::array<unsigned char, 4> EncodeLength(uint32_t n) {

@@ -9,6 +9,7 @@
 #include <unistd.h>
 
 #include <cerrno>
+#include <cstdlib>
 #include <cstring>
 #include <fstream>
 #include <sstream>
@@ -48,7 +49,41 @@ bool ReadFile(const std::string& path, std::string& bytes, std::string* error) {
   return true;
 }
 
-bool WriteFileAtomic(const std::string& path, std::string_view bytes, std::string* error) {
+bool WriteFileAtomic(const std::string& requested, std::string_view bytes, std::string* error) {
+  // An existing target is replaced as it was: through a symbolic link (the
+  // link stays, its target gets the bytes), with its mode and owner; one with
+  // several hard links, or that is not a regular file, is refused, since
+  // replacing it would split the links.
+  std::string path = requested;
+  struct stat old {};
+  bool exists = false;
+  if (::lstat(requested.c_str(), &old) == 0) {
+    if (S_ISLNK(old.st_mode)) {
+      char* real = ::realpath(requested.c_str(), nullptr);
+      if (real == nullptr) {
+        if (error)
+          *error = "cannot write '" + requested + "': it is a symbolic link to a missing file";
+        return false;
+      }
+      path = real;
+      std::free(real);
+      if (::stat(path.c_str(), &old) != 0) {
+        if (error) *error = "cannot write '" + requested + "': " + std::strerror(errno);
+        return false;
+      }
+    }
+    if (!S_ISREG(old.st_mode)) {
+      if (error) *error = "cannot write '" + requested + "': not a regular file";
+      return false;
+    }
+    if (old.st_nlink > 1) {
+      if (error)
+        *error = "cannot write '" + requested + "': it has " + std::to_string(old.st_nlink) +
+                 " hard links, which replacing it would split; write to another file";
+      return false;
+    }
+    exists = true;
+  }
   const size_t slash = path.rfind('/');
   const std::string dir = slash == std::string::npos ? "." : path.substr(0, slash + 1);
   const std::string base = slash == std::string::npos ? path : path.substr(slash + 1);
@@ -75,10 +110,23 @@ bool WriteFileAtomic(const std::string& path, std::string_view bytes, std::strin
     }
     done += static_cast<size_t>(n);
   }
-  // The new file gets ordinary permissions (mkstemp makes it 0600).
-  const mode_t mask = ::umask(0);
-  ::umask(mask);
-  ::fchmod(fd, 0666 & ~mask);
+  if (exists) {
+    // Keeps the replaced file's mode and owner.
+    ::fchmod(fd, old.st_mode & 07777);
+    if ((old.st_uid != ::geteuid() || old.st_gid != ::getegid()) &&
+        ::fchown(fd, old.st_uid, old.st_gid) != 0) {
+      const int saved = errno;
+      ::close(fd);
+      ::unlink(tmp.c_str());
+      errno = saved;
+      return fail("cannot give the new file the owner of the old one");
+    }
+  } else {
+    // A new file gets ordinary permissions (mkstemp makes it 0600).
+    const mode_t mask = ::umask(0);
+    ::umask(mask);
+    ::fchmod(fd, 0666 & ~mask);
+  }
   if (::fsync(fd) != 0 || ::close(fd) != 0) {
     const int saved = errno;
     ::unlink(tmp.c_str());
@@ -116,8 +164,17 @@ LoadResult LoadDocument(const std::string& path) {
 }
 
 bool SaveDocument(const Document& document, const std::string& path, std::string* error) {
-  const std::string bytes =
-      FlavourForPath(path) == Flavour::kXml ? WriteXml(document) : Write(document);
+  // A file that exists keeps its flavour, whatever its name says.
+  Flavour flavour = FlavourForPath(path);
+  std::ifstream in(path, std::ios::binary);
+  if (in) {
+    char head[512];
+    in.read(head, sizeof head);
+    flavour = LooksLikeXml(std::string_view(head, static_cast<size_t>(in.gcount())))
+                  ? Flavour::kXml
+                  : Flavour::kSgml;
+  }
+  const std::string bytes = flavour == Flavour::kXml ? WriteXml(document) : Write(document);
   return WriteFileAtomic(path, bytes, error);
 }
 

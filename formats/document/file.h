@@ -3,7 +3,9 @@
 // Writes never leave a half-written file behind: the bytes go to a temporary
 // file in the target's directory, are flushed to disk, and the temporary is
 // renamed over the target; on any failure the temporary is removed and the
-// target is untouched.
+// target is untouched.  An existing target keeps its mode and owner, a
+// symbolic link is written through, and a file with several hard links (or
+// not a regular file) is refused rather than split.
 #pragma once
 
 #include <optional>
@@ -31,7 +33,8 @@ struct LoadResult {
   std::string error;  // formatted "FILE:LINE:COL: error: message"
 };
 LoadResult LoadDocument(const std::string& path);
-// Writes in the flavour the extension names (.xml: XML, anything else: SGML).
+// Writes in the flavour the extension names (.xml: XML, anything else: SGML),
+// or, when the file exists, in the flavour it has.
 bool SaveDocument(const Document& document, const std::string& path, std::string* error);
 Flavour FlavourForPath(const std::string& path);
 

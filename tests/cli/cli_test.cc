@@ -33,7 +33,8 @@ std::string Sample(const std::string& name) {
 }
 
 std::filesystem::path TempFile(const std::string& name, const std::string& text = "") {
-  const auto dir = std::filesystem::temp_directory_path() / ("asgard_cli_" + std::to_string(getpid()));
+  const auto dir =
+      std::filesystem::temp_directory_path() / ("asgard_cli_" + std::to_string(getpid()));
   std::filesystem::create_directories(dir);
   const auto path = dir / name;
   if (!text.empty()) std::ofstream(path) << text;
@@ -138,6 +139,38 @@ TEST(Cli, AnEndlessLoopEndsWithAClearError) {
   EXPECT_EQ(r.status, 1);
   EXPECT_NE(r.out.find(":2:"), std::string::npos) << r.out;
   EXPECT_NE(r.out.find("limit"), std::string::npos) << r.out;
+}
+
+// Running out of memory is an error message and exit status 1, not an abort
+// by an escaping std::bad_alloc (10 million frames under a 600 MB limit).
+TEST(Cli, OutOfMemoryIsAClearErrorNotASignal) {
+  const auto path = TempFile("frames.al",
+                             "shape_set s -desc {-sub {-sphere 1}}\n"
+                             "body b -shape s -init_dpos {1 0 0}\n"
+                             "simulator -finish 100000 -frames 100\n");
+  const auto csv = TempFile("frames.csv");
+  const std::string cmd = "ulimit -v 600000; " + std::string(ASGARD_BINARY_DIR) +
+                          "/core/app/asgard simulate " + path.string() + " --out " + csv.string() +
+                          " 2>&1";
+  FILE* p = popen(("bash -c '" + cmd + "'").c_str(), "r");
+  std::string out;
+  char buf[4096];
+  size_t n;
+  while ((n = fread(buf, 1, sizeof buf, p)) > 0) out.append(buf, n);
+  const int st = pclose(p);
+  ASSERT_TRUE(WIFEXITED(st)) << out;
+  EXPECT_EQ(WEXITSTATUS(st), 1) << out;
+  EXPECT_NE(out.find("asgard: error: out of memory"), std::string::npos) << out;
+}
+
+// Time spans that would never end, or need more frames than fit, are
+// refused by check with the line and column of the option.
+TEST(Cli, ImpossibleTimeSpansAreRefusedByCheck) {
+  const auto path = TempFile("span.al", "simulator -start -1e308 -finish 1e308\n");
+  const Result r = Asgard("check " + path.string());
+  EXPECT_EQ(r.status, 1);
+  EXPECT_NE(r.out.find("span.al:1:33: error: simulator: the time span"), std::string::npos)
+      << r.out;
 }
 
 }  // namespace

@@ -11,6 +11,7 @@
 
 #include "core/render/image.h"
 #include "formats/document/file.h"
+#include "tests/document/exec.h"
 
 namespace {
 
@@ -25,21 +26,8 @@ fs::path Scratch(const std::string& name) {
   return dir;
 }
 
-struct Result {
-  int status = -1;
-  std::string out;
-};
-
-Result Exec(const std::string& args) {
-  Result r;
-  FILE* p = popen((args + " 2>&1").c_str(), "r");
-  char buf[4096];
-  size_t n;
-  while ((n = fread(buf, 1, sizeof buf, p)) > 0) r.out.append(buf, n);
-  const int s = pclose(p);
-  r.status = WIFEXITED(s) ? WEXITSTATUS(s) : -1;
-  return r;
-}
+using asgard::testing::Exec;
+using Result = asgard::testing::Result;
 
 std::string Read(const fs::path& p) {
   std::string s;

@@ -300,6 +300,26 @@ TEST(Slave, SigkillMidSimulationLeavesTheHostRunningAndRestartWorks) {
   EXPECT_EQ(Status(n.node).state, ASGARD_NODE_SIMULATED);
 }
 
+// Progress notifications reset the watchdog, but cannot extend a call past
+// kOverallTimeoutFactor times the timeout: a simulation that progresses
+// forever is stopped too.
+TEST(Slave, ProgressCannotExtendACallPastItsOverallDeadline) {
+  setenv("ASGARD_CORE_FAULT", "endless-progress-on-simulate", 1);
+  Node n;
+  const int32_t created = Create(Scene(), n, 0.5);
+  unsetenv("ASGARD_CORE_FAULT");
+  ASSERT_EQ(created, ASGARD_OK);
+  asgard_error e{};
+  const auto start = std::chrono::steady_clock::now();
+  EXPECT_EQ(Asgard().node()->simulate(n.node, nullptr, nullptr, &e), ASGARD_ERR_TIMEOUT);
+  const auto took = std::chrono::steady_clock::now() - start;
+  EXPECT_GE(took, std::chrono::milliseconds(1900));
+  EXPECT_LT(took, std::chrono::seconds(5));
+  EXPECT_NE(std::string(e.message).find("did not finish 'simulate' within 2 s"), std::string::npos)
+      << e.message;
+  EXPECT_EQ(Status(n.node).state, ASGARD_NODE_HUNG);
+}
+
 TEST(Slave, ASlaveThatStopsAnsweringIsStoppedByTheWatchdog) {
   setenv("ASGARD_CORE_FAULT", "hang-on-simulate", 1);
   Node n;
@@ -363,10 +383,21 @@ TEST(HostDocument, KillingTheSlaveKeepsTheDocumentAndThePoster) {
   bool live = false;
   const Picture p = doc.Frame(item, ASGARD_DEVICE_PAGE, 90, 60, 1.0, 0, &live);
   ASSERT_TRUE(live);
+  // The first death: the slave is restarted once and the frame drawn.
+  kill(item.status.pid, SIGKILL);
+  doc.Frame(item, ASGARD_DEVICE_PAGE, 90, 60, 2.0, 0, &live);
+  EXPECT_TRUE(live);
+  EXPECT_TRUE(item.restarted);
+  EXPECT_NE(item.restart_reason.find("killed by signal 9"), std::string::npos)
+      << item.restart_reason;
+  const Picture p2 = doc.Frame(item, ASGARD_DEVICE_PAGE, 90, 60, 1.0, 0, &live);
+  ASSERT_TRUE(live);
+  // The second: no more restarts, the last frame is shown.
   kill(item.status.pid, SIGKILL);
   const Picture q = doc.Frame(item, ASGARD_DEVICE_PAGE, 90, 60, 2.0, 0, &live);
   EXPECT_FALSE(live);
-  EXPECT_EQ(q.rgba, p.rgba) << "the last frame is shown";
+  EXPECT_EQ(q.rgba, p2.rgba) << "the last frame is shown";
+  EXPECT_EQ(p2.rgba, p.rgba);
   EXPECT_NE(item.message.find("killed by signal 9"), std::string::npos) << item.message;
   EXPECT_EQ(document::Write(doc.document()), bytes) << "the document is intact";
   ASSERT_TRUE(doc.Restart(item)) << item.message;

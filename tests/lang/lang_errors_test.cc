@@ -83,6 +83,14 @@ std::vector<BadInput> Catalogue() {
        "needs -body"},
       {"SimulatorFinishBeforeStart", "simulator -start 5 -finish 1\n", 1, 28,
        "-finish (1) must be greater than -start (5)"},
+      {"InfiniteTimeSpan", "simulator -start -1e308 -finish 1e308\n", 1, 33, "is not finite"},
+      {"UnresolvableTimeSpan", "simulator -start 1e300 -finish 1.0000000001e300\n", 1, 32,
+       "too short to be resolved"},
+      {"TooManyFrames", "simulator -finish 1e6 -frames 1e6\n", 1, 31,
+       "frames (the time span 1e+06 times -frames 1e+06) is above the limit"},
+      {"TooManyFramesByDefault", "simulator -finish 1e9\n", 1, 19, "is above the limit"},
+      {"TinyMaxStep", "simulator -finish 10 -maxstep 1e-300\n", 1, 31,
+       "would take more than 1e+09 steps"},
       {"ExecIsUnsafe", "exec ls\n", 1, 1, "invalid command name \"exec\""},
       {"OpenIsUnsafe", "open /etc/passwd\n", 1, 1, "invalid command name \"open\""},
       {"NestedInterpretersAreUnavailable", "interp create x\n", 1, 1,
@@ -90,6 +98,21 @@ std::vector<BadInput> Catalogue() {
       {"HugeStringRepeat", "set x [string repeat x 1000000000]\n", 1, 8, "above the scene limit"},
       {"HugeListRepeat", "set x [lrepeat 100000000 a]\n", 1, 8, "above the scene limit"},
       {"DoublingString", "set s x\nwhile 1 {append s $s}\n", 2, 0, "above the scene limit"},
+      {"ConcatPastTheValueLimit",
+       "set t [string repeat x 10000000]\nset all [concat {*}[lrepeat 300 $t]]\n", 2, 0,
+       "come to more than 64 MB in all"},
+      {"JoinWithAHugeSeparator",
+       "set s [string repeat x 10000000]\nset l [lrepeat 1000 a]\nset j [join $l $s]\n", 3, 0,
+       "the result of \"join\" could reach"},
+      {"StringMapBlowUp",
+       "set s [string repeat a 10000000]\nset m [string map [list a [string repeat b 1000]] $s]\n",
+       2, 0, "the result of \"string\" could reach"},
+      {"RegsubBlowUp",
+       "set s [string repeat a 1000000]\nregsub -all a $s [string repeat & 300] r\n", 2, 0,
+       "the result of \"regsub\" could reach"},
+      {"NestedListsWhoseStringWouldBeHuge",
+       "set l [lrepeat 4000 [lrepeat 4000 [string repeat x 1000]]]\nstring length $l\n", 1, 0,
+       "come to more than 64 MB in all"},
       {"HugeFormatWidth", "set s [format %900000000s x]\n", 1, 0, "above the scene limit"},
       {"DeeplyNestedBrackets", "set x " + std::string(300, '[') + std::string(300, ']') + "\n", 1,
        263, "nested more than 256 deep"},
@@ -147,6 +170,39 @@ INSTANTIATE_TEST_SUITE_P(Catalogue, LangBadInput, ::testing::ValuesIn(Catalogue(
                          [](const ::testing::TestParamInfo<BadInput>& info) {
                            return std::string(info.param.name);
                          });
+
+// Copies of a big list add no string bytes, but they take memory: they are
+// counted towards the memory check (they were not, and grew without bound).
+TEST(LangLimits, ListCopiesCountTowardsTheMemoryLimit) {
+  EvalLimits limits;
+  limits.time_limit_ms = 20000;
+  limits.memory_limit_mb = 256;
+  Scene s =
+      Evaluate("set l [lrepeat 4000000 a]\nwhile 1 {lappend all [lrange $l 0 end]}\n", limits);
+  ASSERT_EQ(s.diagnostics.size(), 1u);
+  EXPECT_EQ(s.diagnostics[0].message, "scene exceeded its memory limit (256 MB)");
+  EXPECT_EQ(s.diagnostics[0].span.line, 2);
+}
+
+// A word built from many references to a large value passes Tcl's 2 GB
+// value limit inside the substitution, before any command runs: Tcl panics,
+// which used to abort the process.  It is now an error at the command.
+TEST(LangLimits, AValuePastTclsMaximumSizeIsAnErrorNotAnAbort) {
+  std::string text = "set s [string repeat x 16000000]\nset t \"";
+  for (int i = 0; i < 140; ++i) text += "$s";
+  text += "\"\nshape_set b -desc {-sub {-sphere 1}}\n";
+  EvalLimits limits;
+  limits.time_limit_ms = 30000;
+  Scene s = Evaluate(text, limits);
+  ASSERT_EQ(s.diagnostics.size(), 1u);
+  EXPECT_NE(s.diagnostics[0].message.find("exceeded the limits of the Tcl interpreter"),
+            std::string::npos)
+      << s.diagnostics[0].message;
+  EXPECT_EQ(s.diagnostics[0].span.line, 2);
+  // The next evaluation runs in fresh interpreters as usual.
+  Scene next = Evaluate("shape_set b -desc {-sub {-sphere 1}}\n", limits);
+  EXPECT_FALSE(next.has_errors());
+}
 
 // A scene with one error: evaluation reports it, at `line`, and goes on
 // (check reads what else the scene must give).

@@ -1,0 +1,2 @@
+set o [string repeat "\[" 5000]
+eval "set x ${o}"

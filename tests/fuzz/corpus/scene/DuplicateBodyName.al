@@ -1,0 +1,3 @@
+shape_set box -desc {-sub {-box {1 1 1}}}
+body b1 -shape box
+body b1 -shape box

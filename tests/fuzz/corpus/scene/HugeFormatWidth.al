@@ -1,0 +1,1 @@
+set s [format %900000000s x]

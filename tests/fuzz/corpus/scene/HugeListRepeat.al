@@ -1,0 +1,1 @@
+set x [lrepeat 100000000 a]

@@ -1,0 +1,1 @@
+set x [string repeat x 1000000000]

@@ -1,0 +1,1 @@
+simulator -start -1e308 -finish 1e308

@@ -1,0 +1,1 @@
+simulator -start 5 -finish 1

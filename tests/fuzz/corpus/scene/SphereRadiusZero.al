@@ -1,0 +1,1 @@
+shape_set s -desc {-sub {-sphere 0}}

@@ -1,0 +1,1 @@
+simulator -finish 10 -maxstep 1e-300

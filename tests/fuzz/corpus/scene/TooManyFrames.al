@@ -1,0 +1,1 @@
+simulator -finish 1e6 -frames 1e6

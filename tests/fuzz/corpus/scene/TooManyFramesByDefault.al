@@ -1,0 +1,1 @@
+simulator -finish 1e9

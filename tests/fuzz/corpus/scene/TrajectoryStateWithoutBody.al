@@ -1,0 +1,1 @@
+trajectory tr -points {{0 0 0 0}} -state pos

@@ -1,0 +1,1 @@
+body b1 -shape nope

@@ -1,0 +1,1 @@
+view -scale 0

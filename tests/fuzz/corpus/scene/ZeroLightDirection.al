@@ -1,0 +1,1 @@
+lightsource -dir {0 0 0}
