@@ -5,7 +5,7 @@
 // body in both tabs; an error is marked at its line while the old scene stays
 // shown; Undo restores the text.  Screenshots go to OUT_DIR.
 import { createRequire } from 'node:module';
-import { mkdtempSync, rmSync } from 'node:fs';
+import { mkdtempSync, readFileSync, rmSync } from 'node:fs';
 import { tmpdir } from 'node:os';
 import { join } from 'node:path';
 import { checker, startStudio, sleep, waitFor } from './common.mjs';
@@ -109,6 +109,19 @@ try {
   check(await waitFor(() => a.evaluate(() => document.querySelectorAll('.cm-error-line').length === 0), 'marks cleared'),
     'and the error mark is gone');
   await a.screenshot({ path: join(outDir, '6-undo.png') });
+
+  // Save writes the session's text to the scene file; Revert drops local typing.
+  await b.locator('.viewer[data-viewer="0"] button.save').click();
+  const saved = await waitFor(() => {
+    const t = readFileSync(scene, 'utf8');
+    return t.includes('body b4 ') && !t.includes('no_such_shape') && b3Pos(t) !== original;
+  }, 'the saved file');
+  check(saved, 'Save writes the edited scene to the file');
+  await editor.click();
+  await a.keyboard.press('Control+End');
+  await a.keyboard.insertText('# typed, then reverted\n');
+  await a.locator('.viewer[data-viewer="1"] button.revert').click();
+  check(!(await viewerTexts(a))[1].includes('then reverted'), 'Revert restores the session\'s text');
   check(errors.length === 0, `no script errors in the pages ${errors.join('; ')}`);
 } catch (e) {
   check(false, `unexpected: ${e.stack || e}`);

@@ -83,6 +83,11 @@ async function main() {
   conn.on('closed', () => app.setStatus('the connection to the server is closed'));
 
   document.getElementById('simulate').onclick = () => run('simulate', {});
+  document.getElementById('fit').onclick = () => {
+    if (!app.graphical.poses) return;
+    app.graphical.fit();
+    app.graphical.seek(app.graphical.t);
+  };
   document.getElementById('undo').onclick = () => run('undo', {});
   document.getElementById('redo').onclick = () => run('redo', {});
   document.getElementById('add-viewer').onclick = () => addLanguageViewer();
