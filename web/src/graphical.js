@@ -80,7 +80,7 @@ export class GraphicalViewer {
     });
     this.poses = poses;
     this.ui.slider.max = String(Math.max(1, poses.times.length - 1));
-    if (!this.fitted) this.fit();
+    if (!this.fitted || this.startsOutOfView()) this.fit();
     this.resetHandles();
     this.seek(Math.min(this.t, poses.t1));
   }
@@ -111,7 +111,8 @@ export class GraphicalViewer {
       const value = p ? p.value.trim().split(/\s+/).map(Number) : null;
       const editable = !!(p && p.editable && value && value.length === 3 && value.every(Number.isFinite));
       const mesh = new THREE.Mesh(new THREE.OctahedronGeometry(this.handleSize),
-        new THREE.MeshBasicMaterial({ color: editable ? 0xffa000 : 0x999999, depthTest: false }));
+        new THREE.MeshBasicMaterial({ color: editable ? 0xffa000 : 0x999999, depthTest: false,
+          transparent: true, opacity: 0.55 }));
       mesh.renderOrder = 10;
       const f = this.poses.poses[0];
       const basePos = new THREE.Vector3(f[7 * b.index], f[7 * b.index + 1], f[7 * b.index + 2]);
@@ -132,6 +133,18 @@ export class GraphicalViewer {
       h.mesh.position.add(new THREE.Vector3(h.value[0] - h.baseValue[0], h.value[1] - h.baseValue[1], h.value[2] - h.baseValue[2]));
   }
 
+  // Whether a body's starting position is outside the picture (after an
+  // edit moved it there): then the viewer frames the scene again.
+  startsOutOfView() {
+    const f = this.poses.poses[0];
+    for (const b of this.bodies.values()) {
+      if (b.index < 0) continue;
+      const v = new THREE.Vector3(f[7 * b.index], f[7 * b.index + 1], f[7 * b.index + 2]).project(this.camera);
+      if (Math.abs(v.x) > 0.95 || Math.abs(v.y) > 0.95 || v.z > 1) return true;
+    }
+    return false;
+  }
+
   fit() {
     const f = this.poses.poses[0];
     const box = new THREE.Box3();
@@ -144,7 +157,7 @@ export class GraphicalViewer {
     }
     const sphere = box.getBoundingSphere(new THREE.Sphere());
     const r = Math.max(sphere.radius, 1);
-    this.handleSize = r * 0.05;
+    this.handleSize = r * 0.035;
     this.controls.target.copy(sphere.center);
     // The framing sphere fits the narrower of the two fields of view.
     const half = (this.camera.fov * Math.PI) / 360;
