@@ -26,6 +26,7 @@
 #include "host-shim/host_document.h"
 #include "host-shim/html.h"
 #include "host-shim/layout.h"
+#include "serve/launch.h"
 
 namespace asgard::host {
 namespace {
@@ -34,6 +35,7 @@ using document::Extension;
 
 const char* const kHelp = R"(Usage: dochost convert IN -o OUT [options]
        dochost verb IN VERB [ARGS] [options]
+       dochost serve IN [--port P] [--open]   (the live document view and editor)
        dochost help
 
 Compound documents with embedded Asgard animations (.ens: the SGML-like
@@ -439,7 +441,19 @@ int RunVerb(Host& h) {
   return Usage("unknown verb '" + o.verb + "'");
 }
 
+// dochost serve: the editor server (serve/launch.h).
+int ServeCommand(const std::vector<std::string>& args) {
+  std::string file, error;
+  serve::LaunchOptions lo;
+  if (!serve::ParseLaunchArgs({args.begin() + 1, args.end()}, &file, &lo, &error)) {
+    std::cerr << "dochost serve: " << error << "\nUsage:\n" << serve::kServeUsage;
+    return 2;
+  }
+  return serve::ServeDocument(file, lo);
+}
+
 int Main(const std::vector<std::string>& args) {
+  if (!args.empty() && args[0] == "serve") return ServeCommand(args);
   Host h;
   if (auto status = Parse(args, h.o)) return *status;
   Options& o = h.o;

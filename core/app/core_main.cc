@@ -43,6 +43,7 @@
 #include <string>
 #include <thread>
 
+#include "core/app/editor_rpc.h"
 #include "core/pipeline/pipeline.h"
 #include "core/protocol/protocol.h"
 #include "core/render/sampler.h"
@@ -66,7 +67,8 @@ socket N (default: requests on standard input, answers on standard output).
 Frames are written as RGBA into the shared memory object inherited as --shm-fd.
 
 Methods: load {text}, update {text}, simulate {}, edit {element, param,
-values}, undo {}, redo {}, open_rendition {rendition, width, height, offset,
+values}, undo {}, redo {}, scene_state {}, meshes {}, poses {} (the
+browser editor's, core/app/editor_rpc.h), open_rendition {rendition, width, height, offset,
 device}, close_rendition {rendition}, frame {rendition, t, handles?, wire?},
 command {line}, shutdown {}.
 
@@ -225,6 +227,7 @@ class Slave {
       return {{"ok", done}, {"text", session_->text()}};
     }
     if (method == "command") return Command(params.at("line").get<std::string>());
+    if (auto r = editor_rpc::Dispatch(method, params, session_.get(), sampler_.get())) return *r;
     throw RpcError{kMethodNotFound, "unknown method '" + method + "'"};
   }
 

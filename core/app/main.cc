@@ -28,6 +28,7 @@
 #include "core/lang/lang.h"
 #include "core/pipeline/pipeline.h"
 #include "core/session/session.h"
+#include "serve/launch.h"
 
 namespace {
 
@@ -46,6 +47,7 @@ Usage:
   asgard edit FILE --set ...   change parameters as a graphical editor would
   asgard render FILE [...]     draw frames, pictures and movies of a scene
   asgard export FILE [...]     write the scene for other programs (POV-Ray, glTF, ...)
+  asgard studio FILE [--port P] edit the scene in the browser (http://127.0.0.1:P/)
   asgard help [COMMAND]        show help (also: asgard COMMAND --help)
 
 Scene scripts are Tcl with Asgard's element commands; see docs/language.md.
@@ -505,6 +507,13 @@ int Main(int argc, char** argv) {
   if (cmd == "edit") return Edit(args);
   if (cmd == "render") return asgard::app::RenderCommand(args);
   if (cmd == "export") return asgard::app::ExportCommand(args);
+  if (cmd == "studio") {  // the editor in the browser (serve/launch.h)
+    std::string file, error;
+    asgard::serve::LaunchOptions lo;
+    if (!asgard::serve::ParseLaunchArgs(args, &file, &lo, &error))
+      return Usage("studio: " + error, asgard::serve::kServeUsage);
+    return asgard::serve::ServeScene(file, lo);
+  }
   return Usage("unknown command '" + cmd + "'", kMainHelp);
 }
 

@@ -1,0 +1,131 @@
+// The editor's asgard-core methods (see editor_rpc.h).
+#include "core/app/editor_rpc.h"
+
+#include <cmath>
+
+#include "core/pipeline/pipeline.h"
+#include "core/render/sampler.h"
+#include "core/session/session.h"
+
+namespace asgard::editor_rpc {
+namespace {
+
+using nlohmann::json;
+
+// Six significant digits are far below a pixel at any zoom and keep the
+// stream of poses small.
+double Round(double v) {
+  if (!std::isfinite(v)) return 0.0;
+  return std::round(v * 1e6) / 1e6;
+}
+
+json SceneState(const session::Session& s) {
+  json diagnostics = json::array();
+  // The scene's and its equations' problems (an unknown shape_set, a link to
+  // a missing body), as asgard check reports them.
+  const pipeline::Run check = pipeline::Check(s.scene());
+  for (const auto& d : check.diagnostics) {
+    int end_line = d.span.line, end_column = d.span.column;
+    if (d.span.known() && d.span.end > d.span.begin) {
+      session::TextEdit where;  // the span as an edit: Locate finds its end
+      where.begin = d.span.begin;
+      where.end = d.span.end;
+      session::Locate(where, s.text());
+      end_line = where.end_line;
+      end_column = where.end_column;
+    }
+    diagnostics.push_back(
+        {{"line", d.span.line},
+         {"column", d.span.column},
+         {"end_line", end_line},
+         {"end_column", end_column},
+         {"severity", d.severity == scene::Severity::kError ? "error" : "warning"},
+         {"message", d.message}});
+  }
+  json parameters = json::array();
+  for (const auto& p : s.Parameters())
+    parameters.push_back({{"element", p.element},
+                          {"param", p.param},
+                          {"value", p.value},
+                          {"editable", p.editable},
+                          {"reason", p.reason},
+                          {"line", p.span.line},
+                          {"column", p.span.column}});
+  return {{"ok", true},
+          {"text", s.text()},
+          {"diagnostics", diagnostics},
+          {"parameters", parameters},
+          {"can_undo", s.CanUndo()},
+          {"can_redo", s.CanRedo()}};
+}
+
+json Vec(const Eigen::Vector3d& v) { return {Round(v.x()), Round(v.y()), Round(v.z())}; }
+
+json Meshes(const render::SceneSampler& sampler) {
+  json bodies = json::array();
+  for (const auto& b : sampler.bodies()) {
+    json pieces = json::array();
+    for (const auto& p : b.pieces) {
+      json piece = {{"color", {p.color.r, p.color.g, p.color.b}}};
+      if (p.sphere) {
+        piece["sphere"] = true;
+        piece["center"] = Vec(p.center);
+        piece["radius"] = Round(p.radius);
+      } else {
+        json vertices = json::array(), triangles = json::array();
+        for (const auto& v : p.hull.vertices)
+          for (int k = 0; k < 3; ++k) vertices.push_back(Round(v[k]));
+        for (const auto& t : p.hull.triangles)
+          for (int k = 0; k < 3; ++k) triangles.push_back(t[k]);
+        piece["sphere"] = false;
+        piece["vertices"] = std::move(vertices);
+        piece["triangles"] = std::move(triangles);
+      }
+      pieces.push_back(std::move(piece));
+    }
+    bodies.push_back({{"name", b.name}, {"static", b.is_static}, {"pieces", std::move(pieces)}});
+  }
+  return {{"ok", true}, {"bodies", std::move(bodies)}};
+}
+
+json Poses(const render::SceneSampler& sampler) {
+  const std::vector<double> times = sampler.FrameTimes();
+  json names = json::array();
+  for (const auto& b : sampler.bodies()) names.push_back(b.name);
+  json frames = json::array();
+  for (double t : times) {
+    json frame = json::array();
+    for (const auto& pose : sampler.Poses(t)) {
+      const Eigen::Quaterniond q = pose.q.normalized();
+      for (double v : {pose.p.x(), pose.p.y(), pose.p.z(), q.x(), q.y(), q.z(), q.w()})
+        frame.push_back(Round(v));
+    }
+    frames.push_back(std::move(frame));
+  }
+  json rounded = json::array();
+  for (double t : times) rounded.push_back(Round(t));
+  return {{"ok", true},
+          {"t0", sampler.t0()},
+          {"t1", sampler.t1()},
+          {"frame_rate", sampler.frame_rate()},
+          {"times", std::move(rounded)},
+          {"bodies", std::move(names)},
+          {"poses", std::move(frames)}};
+}
+
+json Refused(const std::string& why) { return {{"ok", false}, {"error", why}}; }
+
+}  // namespace
+
+std::optional<json> Dispatch(const std::string& method, const json& /*params*/,
+                             const session::Session* session, const render::SceneSampler* sampler) {
+  if (method == "scene_state")
+    return session ? SceneState(*session) : Refused("no scene is loaded");
+  if (method == "meshes")
+    return sampler ? Meshes(*sampler) : Refused("the scene has not been simulated");
+  if (method == "poses")
+    return sampler ? Poses(*sampler) : Refused("the scene has not been simulated");
+  return std::nullopt;
+}
+
+}  // namespace asgard::editor_rpc

@@ -1,0 +1,38 @@
+// asgard-core methods for the browser editor (serve/, seed chapter 4): what a
+// graphical viewer and a language viewer need from the session that owns an
+// animation, without drawing anything in the slave.
+//
+//   scene_state {}  → {text, diagnostics: [{line, column, end_line, end_column,
+//                      severity, message}], parameters: [{element, param, value,
+//                      editable, reason, line, column}], can_undo, can_redo}
+//   meshes {}       → {bodies: [{name, static, pieces: [{sphere, center, radius} |
+//                      {vertices: [x y z …], triangles: [i j k …]}, color]}]}
+//   poses {}        → {t0, t1, frame_rate, times: [...], bodies: [names],
+//                      poses: [[x y z qx qy qz qw per body] per frame]}
+//
+// meshes and poses need a successful simulate; before it they answer
+// {ok: false, error}.
+#pragma once
+
+#include <nlohmann/json.hpp>
+#include <optional>
+#include <string>
+
+namespace asgard {
+namespace session {
+class Session;
+}
+namespace render {
+class SceneSampler;
+}
+}  // namespace asgard
+
+namespace asgard::editor_rpc {
+
+// The answer to `method`, or nullopt when it is not one of the editor's.
+// `session` and `sampler` may be null (nothing loaded, not simulated).
+std::optional<nlohmann::json> Dispatch(const std::string& method, const nlohmann::json& params,
+                                       const session::Session* session,
+                                       const render::SceneSampler* sampler);
+
+}  // namespace asgard::editor_rpc

@@ -1,0 +1,190 @@
+#include "serve/launch.h"
+
+#include <spawn.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <cstdlib>
+#include <filesystem>
+#include <iostream>
+#include <memory>
+#include <mutex>
+
+#include "formats/document/document.h"
+#include "formats/document/file.h"
+#include "serve/server.h"
+
+extern char** environ;
+
+namespace asgard::serve {
+namespace fs = std::filesystem;
+
+const char* const kServeUsage =
+    "  dochost serve DOC.ens [--port P] [--open] [--core PATH]\n"
+    "  asgard studio SCENE.al [--port P] [--open] [--core PATH]\n"
+    "Serves the live document view and the Asgard editor on http://127.0.0.1:P/ (a free\n"
+    "port when P is 0 or absent; only this machine can connect).\n";
+
+bool ParseLaunchArgs(const std::vector<std::string>& args, std::string* file, LaunchOptions* o,
+                     std::string* error) {
+  for (size_t i = 0; i < args.size(); ++i) {
+    const std::string& a = args[i];
+    if (a == "--port" || a == "--core") {
+      if (i + 1 >= args.size()) {
+        *error = a + " needs a value";
+        return false;
+      }
+      const std::string& v = args[++i];
+      if (a == "--core") {
+        o->core = v;
+        continue;
+      }
+      char* end = nullptr;
+      const long p = std::strtol(v.c_str(), &end, 10);
+      if (v.empty() || *end != '\0' || p < 0 || p > 65535) {
+        *error = "--port needs a number from 0 to 65535";
+        return false;
+      }
+      o->port = static_cast<int>(p);
+    } else if (a == "--open") {
+      o->open = true;
+    } else if (!a.empty() && a[0] == '-') {
+      *error = "unknown option '" + a + "'";
+      return false;
+    } else if (file->empty()) {
+      *file = a;
+    } else {
+      *error = "unexpected argument '" + a + "'";
+      return false;
+    }
+  }
+  if (file->empty()) {
+    *error = "a file is required";
+    return false;
+  }
+  return true;
+}
+
+namespace {
+
+fs::path ExeDir() {
+  std::error_code ec;
+  const fs::path exe = fs::read_symlink("/proc/self/exe", ec);
+  return ec ? fs::current_path() : exe.parent_path();
+}
+
+// The first candidate (relative to the executable's folder) that exists.
+std::string Find(const std::vector<std::string>& candidates, const std::string& leaf) {
+  for (const auto& c : candidates) {
+    const fs::path p = ExeDir() / c;
+    std::error_code ec;
+    if (fs::exists(p / leaf, ec)) return fs::weakly_canonical(p, ec).string();
+  }
+  return (ExeDir() / candidates.front()).string();
+}
+
+Options MakeOptions(const LaunchOptions& lo) {
+  Options o;
+  o.port = lo.port;
+  o.core_program =
+      !lo.core.empty()
+          ? lo.core
+          : (fs::path(Find({".", "../core/app"}, "asgard-core")) / "asgard-core").string();
+  const char* env = std::getenv("ASGARD_WEB_ROOT");
+  o.web_root = !lo.web_root.empty() ? lo.web_root
+               : env && *env        ? std::string(env)
+                                    : Find({"../web", "../../web"}, "index.html");
+  const bool open = lo.open;
+  o.on_listening = [open](int port) {
+    const std::string url = "http://127.0.0.1:" + std::to_string(port) + "/";
+    std::cout << "serving on " << url << std::endl;
+    if (!open) return;
+    std::string a0 = "xdg-open", a1 = url;
+    char* argv[] = {a0.data(), a1.data(), nullptr};
+    pid_t pid = -1;
+    if (::posix_spawnp(&pid, "xdg-open", nullptr, nullptr, argv, environ) != 0)
+      std::cerr << "cannot run xdg-open; open " << url << " in a browser\n";
+  };
+  return o;
+}
+
+// The document's animations (<ASGARD> texts) in order, and a page of its
+// text with each animation as a live editor frame.
+struct Walk {
+  std::vector<document::Node*> animations;
+  std::string html;
+};
+
+void Collect(std::vector<document::Node>& nodes, Walk& w) {
+  for (auto& n : nodes) {
+    if (n.IsElement("ASGARD")) {
+      w.animations.push_back(&n);
+      w.html +=
+          "<iframe class=\"animation\" src=\"/edit?a=" + std::to_string(w.animations.size() - 1) +
+          "\" style=\"width:100%;height:520px;border:1px solid #999\"></iframe>\n";
+      continue;
+    }
+    if (n.kind == document::NodeKind::kText) {
+      const std::string t = n.Text();
+      if (t.find_first_not_of(" \t\r\n") != std::string::npos)
+        w.html += "<p>" + HtmlEscape(t) + "</p>\n";
+    }
+    if (n.kind == document::NodeKind::kElement) Collect(n.children, w);
+  }
+}
+
+}  // namespace
+
+int ServeDocument(const std::string& path, const LaunchOptions& lo) {
+  auto loaded = document::LoadDocument(path);
+  if (!loaded.document) {
+    std::cerr << loaded.error << "\n";
+    return 1;
+  }
+  auto doc = std::make_shared<document::Document>(std::move(*loaded.document));
+  auto lock = std::make_shared<std::mutex>();  // animations save from their own threads
+  Walk w;
+  Collect(doc->nodes, w);
+  std::vector<Animation> animations;
+  for (size_t i = 0; i < w.animations.size(); ++i) {
+    document::Node* node = w.animations[i];
+    Animation a;
+    a.title = fs::path(path).filename().string() + ", animation " + std::to_string(i + 1);
+    for (const auto& c : node->children)
+      if (c.kind == document::NodeKind::kText) a.text += c.Text();
+    // Saving replaces this animation's text and writes the document
+    // atomically; every other byte stays as read.
+    a.save = [doc, node, path, lock](const std::string& text, std::string* error) {
+      std::lock_guard guard(*lock);
+      std::vector<document::Node> children;
+      children.push_back(document::Node::TextNode(text));
+      node->children = std::move(children);
+      return document::SaveDocument(*doc, path, error);
+    };
+    animations.push_back(std::move(a));
+  }
+  Options o = MakeOptions(lo);
+  o.document_title = fs::path(path).filename().string();
+  o.document_html = "<h1>" + HtmlEscape(o.document_title) + "</h1>\n" + w.html;
+  return Serve(o, std::move(animations));
+}
+
+int ServeScene(const std::string& path, const LaunchOptions& lo) {
+  Animation a;
+  std::string error;
+  if (!document::ReadFile(path, a.text, &error)) {
+    std::cerr << error << "\n";
+    return 1;
+  }
+  a.title = fs::path(path).filename().string();
+  a.save = [path](const std::string& text, std::string* err) {
+    return document::WriteFileAtomic(path, text, err);
+  };
+  std::vector<Animation> animations;
+  animations.push_back(std::move(a));
+  Options o = MakeOptions(lo);
+  o.document_title = fs::path(path).filename().string();
+  return Serve(o, std::move(animations));
+}
+
+}  // namespace asgard::serve

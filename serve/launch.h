@@ -1,0 +1,30 @@
+// Starting the editor server on a document or a bare scene:
+//   dochost serve DOC.ens [--port P] [--open]   → ServeDocument
+//   asgard studio SCENE.al [--port P] [--open]  → ServeScene (a one-animation document)
+// Both print the URL on standard output when the server listens.
+#pragma once
+
+#include <string>
+#include <vector>
+
+namespace asgard::serve {
+
+struct LaunchOptions {
+  int port = 0;          // 0: any free port
+  bool open = false;     // open the page with xdg-open
+  std::string core;      // asgard-core; empty: next to the executables
+  std::string web_root;  // the bundle; empty: $ASGARD_WEB_ROOT or the build tree
+};
+
+// Parses [--port P] [--open] [--core PATH] after the file; false with a
+// message on bad usage.
+bool ParseLaunchArgs(const std::vector<std::string>& args, std::string* file, LaunchOptions* o,
+                     std::string* error);
+
+int ServeDocument(const std::string& path, const LaunchOptions& o);
+int ServeScene(const std::string& path, const LaunchOptions& o);
+
+// The usage text of both commands.
+extern const char* const kServeUsage;
+
+}  // namespace asgard::serve

@@ -1,0 +1,555 @@
+// The editor server (see server.h): Boost.Beast over Boost.Asio, one I/O
+// thread; slave calls happen on one worker thread per animation and their
+// results are posted back to the I/O thread, which alone touches sockets.
+#include "serve/server.h"
+
+// Boost 1.74's asio uses std::exchange without including <utility> (C++20).
+#include <utility>
+// clang-format off
+#include <boost/asio/io_context.hpp>
+#include <boost/asio/ip/tcp.hpp>
+#include <boost/asio/post.hpp>
+#include <boost/asio/strand.hpp>
+#include <boost/beast/core.hpp>
+#include <boost/beast/http.hpp>
+#include <boost/beast/websocket.hpp>
+// clang-format on
+#include <condition_variable>
+#include <deque>
+#include <fstream>
+#include <iostream>
+#include <memory>
+#include <mutex>
+#include <nlohmann/json.hpp>
+#include <set>
+#include <sstream>
+#include <thread>
+
+#include "serve/slave_link.h"
+
+namespace asgard::serve {
+
+namespace beast = boost::beast;
+namespace http = beast::http;
+namespace websocket = beast::websocket;
+namespace net = boost::asio;
+using tcp = net::ip::tcp;
+using nlohmann::json;
+
+bool IsLoopbackPeer(const std::string& address) {
+  boost::system::error_code ec;
+  const auto a = net::ip::make_address(address, ec);
+  if (ec) return false;
+  if (a.is_v6() && a.to_v6().is_v4_mapped())
+    return net::ip::make_address_v4(net::ip::v4_mapped, a.to_v6()).is_loopback();
+  return a.is_loopback();
+}
+
+bool IsOwnOrigin(const std::string& origin, const std::string& host, int port) {
+  const std::string p = ":" + std::to_string(port);
+  const bool host_ok = host == "127.0.0.1" + p || host == "localhost" + p;
+  if (!host_ok) return false;
+  // Browsers always send Origin on a WebSocket upgrade; tools may not.
+  return origin.empty() || origin == "http://127.0.0.1" + p || origin == "http://localhost" + p;
+}
+
+std::string HtmlEscape(const std::string& s) {
+  std::string out;
+  for (char c : s) {
+    if (c == '<')
+      out += "&lt;";
+    else if (c == '>')
+      out += "&gt;";
+    else if (c == '&')
+      out += "&amp;";
+    else if (c == '"')
+      out += "&quot;";
+    else
+      out += c;
+  }
+  return out;
+}
+
+namespace {
+
+class WsSession;
+
+// One animation: its slave, the last good scene, its views.
+class Hub {
+ public:
+  Hub(net::io_context& io, Animation a, std::string core)
+      : io_(io), def_(std::move(a)), text_(def_.text), slave_(std::move(core)) {
+    worker_ = std::thread([this] { Work(); });
+  }
+  ~Hub() {
+    {
+      std::lock_guard lock(mu_);
+      stop_ = true;
+    }
+    cv_.notify_one();
+    worker_.join();
+  }
+  const Animation& def() const { return def_; }
+
+  // I/O thread only.
+  void Join(const std::shared_ptr<WsSession>& s) { views_.insert(s); }
+  void Leave(const std::shared_ptr<WsSession>& s) { views_.erase(s); }
+  void Request(const std::shared_ptr<WsSession>& from, json request);
+
+ private:
+  void Post(std::function<void()> job) {
+    {
+      std::lock_guard lock(mu_);
+      jobs_.push_back(std::move(job));
+    }
+    cv_.notify_one();
+  }
+  void Work() {
+    for (;;) {
+      std::function<void()> job;
+      {
+        std::unique_lock lock(mu_);
+        cv_.wait(lock, [&] { return stop_ || !jobs_.empty(); });
+        if (stop_) return;
+        job = std::move(jobs_.front());
+        jobs_.pop_front();
+      }
+      job();
+    }
+  }
+  // Worker thread: make sure the slave runs with the current text.
+  bool Ensure(std::string* error);
+  json Call(const std::string& method, const json& params);
+  // Worker thread: simulate and fetch the motion; updates the last good scene.
+  json Resimulate();
+  json Open();
+  json Handle(const std::string& method, const json& params,
+              const std::shared_ptr<WsSession>& from);
+  void Broadcast(json event);  // from the worker: posted to the I/O thread
+  void Reply(const std::shared_ptr<WsSession>& to, json message);
+
+  net::io_context& io_;
+  Animation def_;
+  std::string text_;  // the session's text as last known here (survives a slave crash)
+  SlaveLink slave_;
+  bool loaded_ = false;
+  json meshes_, poses_;  // the last good scene
+  std::string sim_error_;
+  std::set<std::shared_ptr<WsSession>> views_;
+  std::mutex mu_;
+  std::condition_variable cv_;
+  std::deque<std::function<void()>> jobs_;
+  bool stop_ = false;
+  std::thread worker_;
+};
+
+class WsSession : public std::enable_shared_from_this<WsSession> {
+ public:
+  WsSession(tcp::socket socket, Hub& hub, size_t max_message) : ws_(std::move(socket)), hub_(hub) {
+    ws_.read_message_max(max_message);
+  }
+  void Run(http::request<http::string_body> req) {
+    ws_.set_option(websocket::stream_base::timeout::suggested(beast::role_type::server));
+    ws_.async_accept(req, [self = shared_from_this()](beast::error_code ec) {
+      if (ec) return;
+      self->hub_.Join(self);
+      self->Read();
+    });
+  }
+  void Send(std::shared_ptr<const std::string> text) {
+    queue_.push_back(std::move(text));
+    if (queue_.size() == 1) Write();
+  }
+
+ private:
+  void Read() {
+    ws_.async_read(buffer_, [self = shared_from_this()](beast::error_code ec, size_t) {
+      if (ec) {  // closed, or a message beyond the limit (closed with 1009)
+        self->hub_.Leave(self);
+        return;
+      }
+      std::string text = beast::buffers_to_string(self->buffer_.data());
+      self->buffer_.consume(self->buffer_.size());
+      json request = json::parse(text, nullptr, false);
+      if (request.is_discarded() || !request.is_object() || !request.contains("method") ||
+          !request["method"].is_string() ||
+          (request.contains("params") && !request["params"].is_object())) {
+        const json id = !request.is_discarded() && request.is_object() && request.contains("id")
+                            ? request["id"]
+                            : json();
+        self->Send(std::make_shared<const std::string>(
+            json{{"id", id},
+                 {"error",
+                  {{"code", request.is_discarded() ? -32700 : -32600},
+                   {"message", request.is_discarded()
+                                   ? "parse error: the message is not JSON"
+                                   : "invalid request: expected {id, method, params}"}}}}
+                .dump(-1, ' ', false, json::error_handler_t::replace)));
+      } else {
+        self->hub_.Request(self, std::move(request));
+      }
+      self->Read();
+    });
+  }
+  void Write() {
+    ws_.text(true);
+    ws_.async_write(net::buffer(*queue_.front()),
+                    [self = shared_from_this()](beast::error_code ec, size_t) {
+                      if (ec) {
+                        self->queue_.clear();
+                        return;
+                      }
+                      self->queue_.pop_front();
+                      if (!self->queue_.empty()) self->Write();
+                    });
+  }
+
+  websocket::stream<beast::tcp_stream> ws_;
+  beast::flat_buffer buffer_;
+  Hub& hub_;
+  std::deque<std::shared_ptr<const std::string>> queue_;
+};
+
+void Hub::Request(const std::shared_ptr<WsSession>& from, json request) {
+  Post([this, from, request = std::move(request)] {
+    const json id = request.value("id", json());
+    const std::string method = request["method"];
+    const json params = request.value("params", json::object());
+    json answer;
+    try {
+      answer = {{"id", id}, {"result", Handle(method, params, from)}};
+    } catch (const std::exception& e) {
+      answer = {{"id", id}, {"error", {{"code", -32602}, {"message", e.what()}}}};
+    }
+    Reply(from, std::move(answer));
+  });
+}
+
+void Hub::Reply(const std::shared_ptr<WsSession>& to, json message) {
+  auto s = std::make_shared<const std::string>(
+      message.dump(-1, ' ', false, json::error_handler_t::replace));
+  net::post(io_, [to, s] { to->Send(s); });
+}
+
+void Hub::Broadcast(json event) {
+  auto s = std::make_shared<const std::string>(
+      event.dump(-1, ' ', false, json::error_handler_t::replace));
+  net::post(io_, [this, s] {
+    for (const auto& v : views_) v->Send(s);
+  });
+}
+
+bool Hub::Ensure(std::string* error) {
+  if (slave_.running() && loaded_) return true;
+  loaded_ = false;
+  const SlaveAnswer a = slave_.Call("load", {{"text", text_}});
+  if (!a.ok) {
+    *error = a.error;
+    return false;
+  }
+  loaded_ = true;
+  return true;
+}
+
+json Hub::Call(const std::string& method, const json& params) {
+  std::string error;
+  if (!Ensure(&error)) throw std::runtime_error(error);
+  const SlaveAnswer a = slave_.Call(method, params);
+  if (a.died) {
+    loaded_ = false;
+    Broadcast({{"event", "error"}, {"message", a.error}});
+  }
+  if (!a.ok) throw std::runtime_error(a.error);
+  return a.result;
+}
+
+json Hub::Resimulate() {
+  std::string error;
+  if (!Ensure(&error)) throw std::runtime_error(error);
+  const SlaveAnswer sim = slave_.Call("simulate", json::object());
+  if (sim.died) loaded_ = false;
+  if (!sim.ok) {
+    sim_error_ = sim.error;
+    return {{"ok", false}, {"error", sim.error}};
+  }
+  sim_error_.clear();
+  meshes_ = Call("meshes", json::object());
+  poses_ = Call("poses", json::object());
+  return {{"ok", true}, {"stats", sim.result}};
+}
+
+json Hub::Open() {
+  if (meshes_.is_null() || !loaded_) Resimulate();
+  json state = Call("scene_state", json::object());
+  return {{"title", def_.title},
+          {"state", state},
+          {"meshes", meshes_},
+          {"poses", poses_},
+          {"sim_error", sim_error_}};
+}
+
+json Hub::Handle(const std::string& method, const json& params,
+                 const std::shared_ptr<WsSession>& from) {
+  const auto after_text_change = [&](const json& changes) {
+    json state = Call("scene_state", json::object());
+    text_ = state.value("text", text_);
+    bool errors = false;
+    for (const auto& d : state["diagnostics"]) errors |= d.value("severity", "") == "error";
+    json sim = errors ? json{{"ok", false}, {"error", "the scene has errors"}} : Resimulate();
+    Broadcast({{"event", "state"}, {"state", state}, {"changes", changes}});
+    if (sim.value("ok", false))
+      Broadcast({{"event", "scene"}, {"meshes", meshes_}, {"poses", poses_}});
+    return json{{"state", state}, {"simulated", sim}};
+  };
+  if (method == "open") return Open();
+  if (method == "set_parameter") {
+    json r = Call("edit", {{"element", params.at("element")},
+                           {"param", params.at("param")},
+                           {"values", params.at("values")}});
+    text_ = r.value("text", text_);
+    Broadcast({{"event", "text"},
+               {"text", text_},
+               {"edits", r["edits"]},
+               {"element", params.at("element")},
+               {"param", params.at("param")},
+               {"values", params.at("values")},
+               {"view", params.value("view", "")}});
+    return r;
+  }
+  if (method == "update") {
+    if (!params.contains("text") || !params["text"].is_string())
+      throw std::runtime_error("update needs a text");
+    json loaded = Call("load", {{"text", params["text"]}});
+    return after_text_change(loaded.value("changes", json::array()));
+  }
+  if (method == "simulate") {
+    json sim = Resimulate();
+    if (sim.value("ok", false))
+      Broadcast({{"event", "scene"}, {"meshes", meshes_}, {"poses", poses_}});
+    return sim;
+  }
+  if (method == "undo" || method == "redo") {
+    json r = Call(method, json::object());
+    json out = after_text_change(json::array());
+    out["done"] = r.value("ok", false);
+    return out;
+  }
+  if (method == "save") {
+    std::string error;
+    if (!def_.save) throw std::runtime_error("this animation cannot be saved");
+    if (!def_.save(text_, &error)) throw std::runtime_error(error);
+    Broadcast({{"event", "saved"}});
+    return {{"ok", true}};
+  }
+  (void)from;
+  throw std::runtime_error("unknown method '" + method + "'");
+}
+
+std::string ReadFile(const std::string& path, bool* ok) {
+  std::ifstream in(path, std::ios::binary);
+  *ok = static_cast<bool>(in);
+  std::ostringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+class Server;
+
+class HttpSession : public std::enable_shared_from_this<HttpSession> {
+ public:
+  HttpSession(tcp::socket socket, Server& server) : stream_(std::move(socket)), server_(server) {}
+  void Run() { Read(); }
+
+ private:
+  void Read();
+  void OnRequest();
+  void Respond(http::status status, const std::string& type, std::string body);
+
+  beast::tcp_stream stream_;
+  beast::flat_buffer buffer_;
+  std::optional<http::request_parser<http::string_body>> parser_;
+  Server& server_;
+};
+
+class Server {
+ public:
+  Server(const Options& o, std::vector<Animation> animations) : options_(o), acceptor_(io_) {
+    for (auto& a : animations)
+      hubs_.push_back(std::make_unique<Hub>(io_, std::move(a), o.core_program));
+  }
+  int Run() {
+    beast::error_code ec;
+    const auto address = net::ip::make_address(options_.bind, ec);
+    if (ec) {
+      std::cerr << "serve: bad address " << options_.bind << "\n";
+      return 2;
+    }
+    tcp::endpoint ep(address, static_cast<unsigned short>(options_.port));
+    acceptor_.open(ep.protocol(), ec);
+    if (!ec) acceptor_.set_option(net::socket_base::reuse_address(true), ec);
+    if (!ec) acceptor_.bind(ep, ec);
+    if (!ec) acceptor_.listen(net::socket_base::max_listen_connections, ec);
+    if (ec) {
+      std::cerr << "serve: cannot listen on " << options_.bind << ":" << options_.port << ": "
+                << ec.message() << "\n";
+      return 1;
+    }
+    port_ = acceptor_.local_endpoint().port();
+    if (options_.on_listening) options_.on_listening(port_);
+    Accept();
+    io_.run();
+    return 0;
+  }
+
+  const Options& options() const { return options_; }
+  int port() const { return port_; }
+  Hub* hub(size_t i) { return i < hubs_.size() ? hubs_[i].get() : nullptr; }
+  size_t hubs() const { return hubs_.size(); }
+
+ private:
+  void Accept() {
+    acceptor_.async_accept(net::make_strand(io_), [this](beast::error_code ec, tcp::socket s) {
+      if (!ec) {
+        beast::error_code pe;
+        const auto peer = s.remote_endpoint(pe);
+        if (!pe && IsLoopbackPeer(peer.address().to_string())) {
+          std::make_shared<HttpSession>(std::move(s), *this)->Run();
+        } else {
+          std::cerr << "serve: refused a connection from "
+                    << (pe ? std::string("an unknown peer") : peer.address().to_string()) << "\n";
+          s.close(pe);
+        }
+      }
+      Accept();
+    });
+  }
+
+  Options options_;
+  net::io_context io_{1};
+  tcp::acceptor acceptor_;
+  std::vector<std::unique_ptr<Hub>> hubs_;
+  int port_ = 0;
+};
+
+void HttpSession::Read() {
+  parser_.emplace();
+  parser_->header_limit(16 * 1024);
+  parser_->body_limit(64 * 1024);
+  stream_.expires_after(std::chrono::seconds(60));
+  http::async_read(stream_, buffer_, *parser_,
+                   [self = shared_from_this()](beast::error_code ec, size_t) {
+                     if (ec == http::error::end_of_stream || ec == beast::error::timeout) {
+                       beast::error_code e;
+                       self->stream_.socket().shutdown(tcp::socket::shutdown_both, e);
+                       return;
+                     }
+                     if (ec) {  // malformed or oversized: answer 400 and close
+                       self->Respond(http::status::bad_request, "text/plain",
+                                     "bad request: " + ec.message() + "\n");
+                       return;
+                     }
+                     self->OnRequest();
+                   });
+}
+
+// The animation index in "?a=N" (0 when absent); -1 when malformed.
+long AnimationIndex(const std::string& target) {
+  const auto q = target.find("a=");
+  if (q == std::string::npos) return 0;
+  try {
+    size_t used = 0;
+    const long n = std::stol(target.substr(q + 2), &used);
+    return n < 0 ? -1 : n;
+  } catch (...) {
+    return -1;
+  }
+}
+
+void HttpSession::OnRequest() {
+  auto req = parser_->release();
+  const std::string target(req.target());
+  const std::string path = target.substr(0, target.find('?'));
+  const Options& o = server_.options();
+  if (websocket::is_upgrade(req)) {
+    const std::string origin(req[http::field::origin]);
+    const std::string host(req[http::field::host]);
+    if (path != "/ws") return Respond(http::status::not_found, "text/plain", "not found\n");
+    if (!IsOwnOrigin(origin, host, server_.port())) {
+      std::cerr << "serve: refused a WebSocket upgrade from origin '" << origin << "'\n";
+      return Respond(http::status::forbidden, "text/plain", "forbidden: foreign origin\n");
+    }
+    const long i = AnimationIndex(target);
+    Hub* hub = i < 0 ? nullptr : server_.hub(static_cast<size_t>(i));
+    if (!hub) return Respond(http::status::not_found, "text/plain", "no such animation\n");
+    std::make_shared<WsSession>(stream_.release_socket(), *hub, o.max_message)->Run(std::move(req));
+    return;
+  }
+  const std::string host(req[http::field::host]);
+  if (!IsOwnOrigin("", host, server_.port()))
+    return Respond(http::status::forbidden, "text/plain", "forbidden: unknown host\n");
+  if (req.method() != http::verb::get && req.method() != http::verb::head)
+    return Respond(http::status::method_not_allowed, "text/plain", "only GET\n");
+  bool ok = false;
+  if (path == "/editor.js") {
+    std::string js = ReadFile(o.web_root + "/editor.js", &ok);
+    if (!ok)
+      return Respond(http::status::not_found, "text/plain",
+                     "the editor bundle was not built (web/, needs node)\n");
+    return Respond(http::status::ok, "text/javascript; charset=utf-8", std::move(js));
+  }
+  if (path == "/editor.css") {
+    std::string css = ReadFile(o.web_root + "/editor.css", &ok);
+    return Respond(ok ? http::status::ok : http::status::not_found, "text/css", std::move(css));
+  }
+  if (path == "/edit" || (path == "/" && o.document_html.empty())) {
+    const long i = AnimationIndex(target);
+    if (i < 0 || !server_.hub(static_cast<size_t>(i)))
+      return Respond(http::status::not_found, "text/plain", "no such animation\n");
+    std::string page = ReadFile(o.web_root + "/index.html", &ok);
+    if (!ok) return Respond(http::status::not_found, "text/plain", "index.html is missing\n");
+    return Respond(http::status::ok, "text/html; charset=utf-8", std::move(page));
+  }
+  if (path == "/") {
+    std::string page = "<!doctype html><html><head><meta charset=utf-8><title>" +
+                       HtmlEscape(o.document_title) + "</title></head><body>\n" + o.document_html;
+    page += "<h2>Animations</h2><ul>";
+    for (size_t i = 0; i < server_.hubs(); ++i)
+      page += "<li><a href=\"/edit?a=" + std::to_string(i) + "\">" +
+              HtmlEscape(server_.hub(i)->def().title) + "</a></li>";
+    page += "</ul></body></html>\n";
+    return Respond(http::status::ok, "text/html; charset=utf-8", std::move(page));
+  }
+  Respond(http::status::not_found, "text/plain", "not found\n");
+}
+
+void HttpSession::Respond(http::status status, const std::string& type, std::string body) {
+  auto res = std::make_shared<http::response<http::string_body>>(status, 11);
+  res->set(http::field::server, "asgard");
+  res->set(http::field::content_type, type);
+  res->set(http::field::cache_control, "no-store");
+  res->set("X-Content-Type-Options", "nosniff");
+  res->keep_alive(status == http::status::ok);
+  res->body() = std::move(body);
+  res->prepare_payload();
+  http::async_write(stream_, *res, [self = shared_from_this(), res](beast::error_code ec, size_t) {
+    if (ec || !res->keep_alive()) {
+      beast::error_code e;
+      self->stream_.socket().shutdown(tcp::socket::shutdown_both, e);
+      return;
+    }
+    self->Read();
+  });
+}
+
+}  // namespace
+
+int Serve(const Options& options, std::vector<Animation> animations) {
+  if (animations.empty()) {
+    std::cerr << "serve: the document has no animation to edit\n";
+    return 1;
+  }
+  Server server(options, std::move(animations));
+  return server.Run();
+}
+
+}  // namespace asgard::serve

@@ -1,0 +1,56 @@
+// The editor server (issue 13): HTTP and WebSocket on 127.0.0.1 for the
+// browser editor of seed chapter 4 and the live document view of seed 6.2.4.
+//
+//   browser ──HTTP GET──▶ /            the document page (or the editor of a
+//                          /edit?a=N    bare scene), the editor of animation N
+//                          /editor.js   the bundle built from web/
+//   browser ══WebSocket══▶ /ws?a=N     JSON {id, method, params} → {id, result | error};
+//                                       events {event: text | scene | state | error}
+//                                       go to every view of animation N
+//
+// Each animation has one asgard-core slave (core/app/editor_rpc.h) and one
+// worker thread that talks to it, so all views edit one session.  Safety:
+// the listening socket is bound to 127.0.0.1, peers that are not loopback are
+// closed at accept, WebSocket upgrades must come from our own origin and Host
+// (no cross-site page and no DNS rebinding reaches the editor), requests and
+// messages have size limits, and a message that is not JSON is answered with
+// an error.  See docs/editor-server.md.
+#pragma once
+
+#include <functional>
+#include <string>
+#include <vector>
+
+namespace asgard::serve {
+
+struct Animation {
+  std::string title;
+  std::string text;  // the scene text when the server starts
+  // Saves `text` as this animation's scene (atomically); false with `error`.
+  std::function<bool(const std::string& text, std::string* error)> save;
+};
+
+struct Options {
+  std::string bind = "127.0.0.1";
+  int port = 0;              // 0: any free port
+  std::string web_root;      // index.html and editor.js (the bundle)
+  std::string core_program;  // asgard-core
+  std::string document_title;
+  std::string document_html;     // the live document view's body; empty: "/" is the editor
+  size_t max_message = 1 << 20;  // WebSocket message limit in bytes
+  std::function<void(int port)> on_listening;
+};
+
+// Serves until the process ends; returns an exit status when it cannot start.
+int Serve(const Options& options, std::vector<Animation> animations);
+
+// Whether a peer address may talk to the server (loopback only).
+bool IsLoopbackPeer(const std::string& address);
+// Whether a WebSocket upgrade with these Origin and Host headers (empty when
+// absent) may proceed on `port`.
+bool IsOwnOrigin(const std::string& origin, const std::string& host, int port);
+
+// Text made safe inside HTML text and attribute values.
+std::string HtmlEscape(const std::string& s);
+
+}  // namespace asgard::serve

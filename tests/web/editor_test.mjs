@@ -1,0 +1,134 @@
+// The Asgard editor end to end in headless Chromium (issue 13): the seed
+// pendulum in two tabs (the first with two language viewers); dragging b3's
+// position handle changes `-init_pos` in every language viewer while
+// dragging and re-simulates on release; a new body line, Update, shows the
+// body in both tabs; an error is marked at its line while the old scene stays
+// shown; Undo restores the text.  Screenshots go to OUT_DIR.
+import { createRequire } from 'node:module';
+import { mkdtempSync, readFileSync, rmSync } from 'node:fs';
+import { tmpdir } from 'node:os';
+import { join } from 'node:path';
+import { checker, startStudio, sleep, waitFor } from './common.mjs';
+
+const require = createRequire(join(process.env.ASGARD_WEB_MODULES, 'x.js'));
+const { chromium } = require('playwright-core');
+const [asgard, scene, outDir] = process.argv.slice(2);
+const { check, failures } = checker();
+const { url, proc } = await startStudio(asgard, scene);
+const userData = mkdtempSync(join(tmpdir(), 'asgard-chromium-'));
+
+const context = await chromium.launchPersistentContext(userData, {
+  executablePath: '/usr/bin/chromium',
+  headless: true,
+  args: ['--headless', '--no-sandbox', '--disable-gpu', '--disable-background-networking',
+         '--disable-component-update', '--disable-sync', '--no-first-run',
+         '--use-angle=swiftshader', '--enable-unsafe-swiftshader'],
+  viewport: { width: 1200, height: 800 },
+});
+
+const b3Pos = (text) => (/body b3 [^\n]*-init_pos \{([^}]*)\}/.exec(text) || [])[1];
+const viewerTexts = (page) => page.evaluate(() => window.asgard.languageViewers.map((v) => v.text()));
+
+try {
+  const a = context.pages()[0] ?? await context.newPage();
+  const b = await context.newPage();
+  const errors = [];
+  for (const p of [a, b]) p.on('pageerror', (e) => errors.push(String(e)));
+  await a.goto(`${url}?viewers=2`);
+  await b.goto(url);
+  for (const [p, name] of [[a, 'first'], [b, 'second']])
+    check(await waitFor(() => p.evaluate(() => window.asgard.ready && window.asgard.graphical.bodyNames().includes('b3'))),
+      `the ${name} tab shows the pendulum's bodies`);
+  await a.screenshot({ path: join(outDir, '1-open.png') });
+  const original = b3Pos((await viewerTexts(a))[0]);
+  check(original === '10.1 -17 0', `b3 starts at -init_pos {${original}}`);
+  const startPos = await a.evaluate(() => window.asgard.graphical.bodyPosition('b3'));
+
+  // Drag b3's handle 120 px to the right, in steps.
+  const h = await a.evaluate(() => window.asgard.graphical.handleScreenPos('b3'));
+  check(h !== null, 'b3 has a position handle');
+  await a.mouse.move(h.x, h.y);
+  await a.mouse.down();
+  for (let i = 1; i <= 6; ++i) { await a.mouse.move(h.x + 10 * i, h.y - 3 * i); await sleep(40); }
+  const moving = await waitFor(async () => {
+    const ta = await viewerTexts(a), tb = await viewerTexts(b);
+    return [...ta, ...tb].every((t) => b3Pos(t) && b3Pos(t) !== original);
+  }, 'the dragged value in every language viewer');
+  const during = [...await viewerTexts(a), ...await viewerTexts(b)].map(b3Pos);
+  check(moving, `while dragging, -init_pos changed in all three language viewers: ${during.join(' | ')}`);
+  check(new Set(during).size === 1, 'every language viewer shows the same value');
+  await a.screenshot({ path: join(outDir, '2-dragging.png') });
+  for (let i = 7; i <= 12; ++i) { await a.mouse.move(h.x + 10 * i, h.y - 3 * i); await sleep(30); }
+  await a.mouse.up();
+  const released = await waitFor(async () => {
+    const pa = await a.evaluate(() => window.asgard.graphical.bodyPosition('b3'));
+    const pb = await b.evaluate(() => window.asgard.graphical.bodyPosition('b3'));
+    return Math.abs(pa[0] - startPos[0]) > 0.5 && Math.abs(pb[0] - startPos[0]) > 0.5;
+  }, 'the re-simulated motion');
+  const after = b3Pos((await viewerTexts(b))[0]);
+  check(released, `on release the motion is re-simulated and shown in both tabs (b3 now starts at {${after}})`);
+  await a.evaluate(() => window.asgard.graphical.seek(1.5));
+  await a.screenshot({ path: join(outDir, '3-after-drag.png') });
+
+  // Type a new body, Update in the second language viewer of the first tab.
+  const editor = a.locator('.viewer[data-viewer="1"] .cm-content');
+  await editor.click();
+  await a.keyboard.press('Control+End');
+  await a.keyboard.insertText('\nbody b4 -shape ss1 -init_pos {0 8 0} -init_dpos {0 0 0} -ct 1\n');
+  await a.locator('.viewer[data-viewer="1"] button.update').click();
+  const added = await waitFor(async () =>
+    (await a.evaluate(() => window.asgard.graphical.bodyNames().includes('b4'))) &&
+    (await b.evaluate(() => window.asgard.graphical.bodyNames().includes('b4'))), 'b4 in both tabs');
+  check(added, 'after Update the new body b4 is shown in the graphical viewers of both tabs');
+  check((await viewerTexts(b))[0].includes('body b4 '), 'the other tab\'s language viewer has the new line');
+  await a.evaluate(() => window.asgard.graphical.seek(0));
+  await a.screenshot({ path: join(outDir, '4-new-body.png') });
+
+  // An error: marked at its line, the last good scene stays.
+  await editor.click();
+  await a.keyboard.press('Control+End');
+  await a.keyboard.insertText('body b5 -shape no_such_shape -init_pos {0 0 0}\n');
+  const errorLine = (await viewerTexts(a))[1].split('\n').findIndex((l) => l.startsWith('body b5')) + 1;
+  await a.locator('.viewer[data-viewer="1"] button.update').click();
+  const marked = await waitFor(() => a.evaluate((line) =>
+    [...document.querySelectorAll('.viewer .cm-error-line')].some((e) => e.dataset.errorLine === String(line)), errorLine),
+    'the error line mark');
+  const messages = await a.locator('.viewer[data-viewer="0"] .errors').textContent();
+  check(marked, `the error is marked at line ${errorLine}: ${messages}`);
+  const bodies = await a.evaluate(() => window.asgard.graphical.bodyNames());
+  check(bodies.includes('b4') && !bodies.includes('b5'), `the last good scene stays shown (${bodies.join(' ')})`);
+  const markedB = await waitFor(() => b.evaluate(() => document.querySelectorAll('.cm-error-line').length > 0), 'error in tab 2');
+  check(markedB, 'the error is marked in the other tab too');
+  await a.screenshot({ path: join(outDir, '5-error.png') });
+
+  // Undo: the text without the faulty line, errors gone.
+  await a.locator('#undo').click();
+  const undone = await waitFor(async () => [...await viewerTexts(a), ...await viewerTexts(b)]
+    .every((t) => !t.includes('no_such_shape') && t.includes('body b4 ')), 'undo in every viewer');
+  check(undone, 'Undo restores the text in every language viewer');
+  check(await waitFor(() => a.evaluate(() => document.querySelectorAll('.cm-error-line').length === 0), 'marks cleared'),
+    'and the error mark is gone');
+  await a.screenshot({ path: join(outDir, '6-undo.png') });
+
+  // Save writes the session's text to the scene file; Revert drops local typing.
+  await b.locator('.viewer[data-viewer="0"] button.save').click();
+  const saved = await waitFor(() => {
+    const t = readFileSync(scene, 'utf8');
+    return t.includes('body b4 ') && !t.includes('no_such_shape') && b3Pos(t) !== original;
+  }, 'the saved file');
+  check(saved, 'Save writes the edited scene to the file');
+  await editor.click();
+  await a.keyboard.press('Control+End');
+  await a.keyboard.insertText('# typed, then reverted\n');
+  await a.locator('.viewer[data-viewer="1"] button.revert').click();
+  check(!(await viewerTexts(a))[1].includes('then reverted'), 'Revert restores the session\'s text');
+  check(errors.length === 0, `no script errors in the pages ${errors.join('; ')}`);
+} catch (e) {
+  check(false, `unexpected: ${e.stack || e}`);
+} finally {
+  await context.close();
+  rmSync(userData, { recursive: true, force: true });
+  proc.kill('SIGTERM');
+}
+if (failures.length) { console.log(`${failures.length} failure(s)`); process.exit(1); }
+console.log('all editor checks passed');

@@ -1,0 +1,98 @@
+// A language viewer (seed 4.2): the scene text in CodeMirror 6 with Update,
+// Save and Revert.  Text changes from the session (another viewer's Update, a
+// handle dragged) arrive as ordinary editor transactions — the smallest
+// replacement — so the editor's own undo sees them.  Errors are marked at
+// their spans and listed under the text.
+import { EditorView, basicSetup } from 'codemirror';
+import { StateEffect, StateField } from '@codemirror/state';
+import { Decoration } from '@codemirror/view';
+import { setDiagnostics } from '@codemirror/lint';
+
+const setErrorLines = StateEffect.define();
+const errorLines = StateField.define({
+  create: () => Decoration.none,
+  update(deco, tr) {
+    deco = deco.map(tr.changes);
+    for (const e of tr.effects) if (e.is(setErrorLines)) deco = e.value;
+    return deco;
+  },
+  provide: (f) => EditorView.decorations.from(f),
+});
+
+export class LanguageViewer {
+  constructor(parent, index, actions) {
+    this.session = '';
+    const root = document.createElement('div');
+    root.className = 'viewer';
+    root.dataset.viewer = String(index);
+    const bar = document.createElement('div');
+    bar.className = 'bar';
+    for (const [name, f] of [
+      ['Update', () => actions.update(this.view.state.doc.toString())],
+      ['Save', () => actions.save(this.view.state.doc.toString())],
+      ['Revert', () => this.revert()],
+    ]) {
+      const b = document.createElement('button');
+      b.textContent = name;
+      b.className = name.toLowerCase();
+      b.onclick = f;
+      bar.appendChild(b);
+    }
+    root.appendChild(bar);
+    this.errors = document.createElement('div');
+    this.errors.className = 'errors';
+    parent.appendChild(root);
+    this.view = new EditorView({ doc: '', extensions: [basicSetup, errorLines], parent: root });
+    root.appendChild(this.errors);
+    this.root = root;
+  }
+
+  text() { return this.view.state.doc.toString(); }
+
+  // Adopt the session's text (as a minimal change) and, when given, its
+  // diagnostics.
+  showSession(text, diagnostics) {
+    this.session = text;
+    const old = this.text();
+    if (old !== text) {
+      let a = 0;
+      while (a < old.length && a < text.length && old[a] === text[a]) ++a;
+      let b = 0;
+      while (b < old.length - a && b < text.length - a &&
+             old[old.length - 1 - b] === text[text.length - 1 - b]) ++b;
+      this.view.dispatch({
+        changes: { from: a, to: old.length - b, insert: text.slice(a, text.length - b) },
+        userEvent: 'input.session',
+      });
+    }
+    if (diagnostics) this.mark(diagnostics);
+  }
+
+  revert() { this.showSession(this.session, null); }
+
+  mark(diagnostics) {
+    const doc = this.view.state.doc;
+    const at = (line, column) => {
+      const l = doc.line(Math.min(Math.max(line, 1), doc.lines));
+      return Math.min(l.from + Math.max(column - 1, 0), l.to);
+    };
+    const list = [];
+    const lines = [];
+    this.errors.textContent = '';
+    for (const d of diagnostics) {
+      if (!(d.line > 0)) continue;
+      const from = at(d.line, d.column);
+      let to = d.end_line > 0 ? at(d.end_line, d.end_column) : from;
+      if (to <= from) to = Math.min(doc.line(Math.min(d.line, doc.lines)).to, doc.length);
+      list.push({ from, to, severity: d.severity === 'error' ? 'error' : 'warning', message: d.message });
+      if (d.severity === 'error') lines.push(Decoration.line({ class: 'cm-error-line', attributes: { 'data-error-line': String(d.line) } }).range(doc.line(Math.min(d.line, doc.lines)).from));
+      const item = document.createElement('div');
+      item.className = `diagnostic ${d.severity}`;
+      item.textContent = `line ${d.line}: ${d.message}`;
+      this.errors.appendChild(item);
+    }
+    lines.sort((x, y) => x.from - y.from);
+    this.view.dispatch(setDiagnostics(this.view.state, list));
+    this.view.dispatch({ effects: setErrorLines.of(Decoration.set(lines, true)) });
+  }
+}
