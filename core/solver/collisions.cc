@@ -60,12 +60,6 @@ void ValueRange(const Cubic& p, double s0, double s1, double& lo, double& hi) {
   take((-B + r) / (2 * A));
 }
 
-// Largest |p''|/h² on [s0, s1] (p'' is linear in s).
-double AccelMax(const Cubic& p, double s0, double s1, double h) {
-  auto acc = [&](double s) { return std::abs(2 * p.c + 6 * p.d * s); };
-  return std::max(acc(s0), acc(s1)) / (h * h);
-}
-
 double RateMax(const Cubic& p, double s0, double s1, double h) {
   double m = std::max(std::abs(p.Derivative(s0)), std::abs(p.Derivative(s1)));
   if (p.d != 0) {
@@ -442,19 +436,38 @@ bool CollisionMonitor::CheckEpoch() {
   return false;
 }
 
-double CollisionMonitor::AccelBound(int body, double t0, double t1) const {
+double CollisionMonitor::AccelBound(int body, double t0, double t1,
+                                    const Eigen::Vector3d& ref) const {
   const physics::BodyModel& m = sys_.bodies[body];
-  if (m.first_var < 0) return 0.0;
+  if (m.first_var < 0) return ref.norm();
   double sum2 = 0;
   for (int axis = 0; axis < 3; ++axis) {
     double amax = 0;
+    // p'' is linear on each segment: its extremes are at the ends.
     ForEachSegment(m.first_var + physics::kX + axis, t0, t1,
                    [&](const Cubic& p, double s0, double s1, double h) {
-                     amax = std::max(amax, AccelMax(p, s0, s1, h));
+                     for (double s : {s0, s1})
+                       amax =
+                           std::max(amax, std::abs((2 * p.c + 6 * p.d * s) / (h * h) - ref[axis]));
                    });
     sum2 += amax * amax;
   }
   return std::sqrt(sum2);
+}
+
+Eigen::Vector3d CollisionMonitor::AccelAt(int body, double t, double t1) const {
+  const physics::BodyModel& m = sys_.bodies[body];
+  Eigen::Vector3d acc = Eigen::Vector3d::Zero();
+  if (m.first_var < 0) return acc;
+  for (int axis = 0; axis < 3; ++axis) {
+    bool first = true;
+    ForEachSegment(m.first_var + physics::kX + axis, t, t1,
+                   [&](const Cubic& p, double s0, double, double h) {
+                     if (first) acc[axis] = (2 * p.c + 6 * p.d * s0) / (h * h);
+                     first = false;
+                   });
+  }
+  return acc;
 }
 
 std::optional<Impact> CollisionMonitor::FirstImpact(int a, int b, double start, double end) {
@@ -470,13 +483,20 @@ std::optional<Impact> CollisionMonitor::FirstImpact(int a, int b, double start, 
         for (int k = 0; k < 3; ++k) v[k] = sim_.Rate(m.first_var + physics::kX + k, start);
       return v;
     };
-    const double relative = (rate(a) - rate(b)).norm() +
-                            (AccelBound(a, start, end) + AccelBound(b, start, end)) * (end - start);
+    // |Δa(t)| ≤ |Δa(start)| + both bodies' deviations from their start
+    // accelerations: two bodies falling together close at nothing.
+    const Eigen::Vector3d aa = AccelAt(a, start, end), ab = AccelAt(b, start, end);
+    const double dv =
+        ((ab - aa).norm() + AccelBound(a, start, end, aa) + AccelBound(b, start, end, ab)) *
+        (end - start);
+    const double relative = (rate(a) - rate(b)).norm() + dv;
     const double sum = ma.max_linear_speed + mb.max_linear_speed;
     if (relative < sum) {
       ma.max_linear_speed = relative;
       mb.max_linear_speed = 0.0;
     }
+    ma.dv = dv;
+    mb.dv = 0.0;
   }
   // Every distance evaluation in the search places both bodies once.
   ma.pose = [this, a](double t) {

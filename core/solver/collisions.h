@@ -141,7 +141,12 @@ class CollisionMonitor {
   std::vector<int> RestingAxes(int body, const Eigen::Vector3d& n_into, bool partner_movable,
                                double t, Eigen::Vector3d& v);
   collide::Motion MotionOf(int body, double t0, double t1) const;
-  double AccelBound(int body, double t0, double t1) const;
+  // Bound on |a(t) − ref| over [t0, t1] for the position interpolant's
+  // acceleration a; AccelAt is that acceleration at t (the segment after t,
+  // up to t1).
+  double AccelBound(int body, double t0, double t1,
+                    const Eigen::Vector3d& ref = Eigen::Vector3d::Zero()) const;
+  Eigen::Vector3d AccelAt(int body, double t, double t1) const;
   collide::Pose PoseAt(int body, double t) const;
   bool Prescribed(int body, double t) const;
   template <typename F>
