@@ -196,6 +196,24 @@ CollisionMonitor::CollisionMonitor(Simulation& sim, double separation)
     }
     info.collidable = !info.pieces.empty();
     if (info.collidable) min_radius = std::min(min_radius, info.radius);
+    if (m.first_var < 0 && info.collidable) {
+      // A static body's own box, exact: a wall is a candidate only for what
+      // comes near it, not for everything inside its bounding sphere.
+      const collide::Pose pose = PoseAt(static_cast<int>(b), sys_.t0);
+      info.lo = Eigen::Vector3d::Constant(kInf);
+      info.hi = Eigen::Vector3d::Constant(-kInf);
+      for (const auto& piece : info.pieces) {
+        if (piece.is_sphere) {
+          const Eigen::Vector3d c = pose.p + pose.R * piece.center;
+          info.lo = info.lo.cwiseMin(c - Eigen::Vector3d::Constant(piece.radius));
+          info.hi = info.hi.cwiseMax(c + Eigen::Vector3d::Constant(piece.radius));
+        }
+        for (const auto& v : piece.vertices) {
+          info.lo = info.lo.cwiseMin(pose.p + pose.R * v);
+          info.hi = info.hi.cwiseMax(pose.p + pose.R * v);
+        }
+      }
+    }
     if (m.first_var >= 0) {
       for (int s = 0; s < physics::kBodySlots; ++s)
         info.components.push_back(sim.component_of(m.first_var + s));
@@ -376,11 +394,12 @@ bool CollisionMonitor::CheckEpoch() {
     if (!info.collidable) continue;
     Eigen::Vector3d lo, hi;
     const physics::BodyModel& m = sys_.bodies[b];
+    if (m.first_var < 0) {
+      const Eigen::Vector3d r = Eigen::Vector3d::Constant(separation_);
+      broad.Add(static_cast<int>(b), info.lo - r, info.hi + r);
+      continue;
+    }
     for (int a = 0; a < 3; ++a) {
-      if (m.first_var < 0) {
-        lo[a] = hi[a] = m.x0[a];
-        continue;
-      }
       const int var = m.first_var + physics::kX + a;
       lo[a] = hi[a] = sim_.Value(var, e0);
       ForEachSegment(var, e0, e1, [&](const Cubic& p, double s0, double s1, double) {

@@ -96,7 +96,9 @@ class CollisionMonitor {
     bool collidable = false;
     bool infinite = false;  // static
     std::vector<collide::Piece> pieces;
-    double radius = 0.0;          // max piece bound radius
+    double radius = 0.0;                           // max piece bound radius
+    Eigen::Vector3d lo = Eigen::Vector3d::Zero();  // static: world box of its pieces
+    Eigen::Vector3d hi = Eigen::Vector3d::Zero();
     std::vector<int> components;  // components holding its variables
     double end = 0.0;             // time all its variables are computed to
   };
