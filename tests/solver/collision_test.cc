@@ -431,9 +431,10 @@ TEST(Contact, ThreeCubesTurnedToLandOnAnEdgeComeToRestAboveTheFloor) {
   EXPECT_TRUE(run.collisions->warnings().empty());
 }
 
-// Known gap (issue 14): this run takes about 5 minutes (239 million distance
-// queries: conservative advancement creeps along the hopping contacts of
-// the pile) and five of the cubes are still hopping, not asleep, at t = 5.
+// Known gap (issue 14): this run takes 5 minutes or more (239 million
+// distance queries in one run: conservative advancement creeps along the
+// hopping contacts of the pile) and in that run five of the cubes were still
+// hopping, not asleep, at t = 5.
 TEST(Contact, DISABLED_APileOfTenCubesAtRandomRotationsComesToRestAboveTheFloor) {
   const SceneRun run = SimulateOk(ReadSample("../tests/solver/data/pile10.al"), 1e-6, 1e-9);
   const double t1 = 5.0;
