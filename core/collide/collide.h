@@ -17,6 +17,7 @@
 #include <Eigen/Dense>
 #include <array>
 #include <functional>
+#include <limits>
 #include <optional>
 #include <utility>
 #include <vector>
@@ -89,6 +90,36 @@ DistanceResult Distance(const Piece& a, const Pose& pa, const Piece& b, const Po
 // Returns nullopt when libccd gives no usable answer (non-finite output).
 std::optional<bool> OverlapMpr(const Piece& a, const Pose& pa, const Piece& b, const Pose& pb);
 
+// Penetration of two overlapping pieces by libccd's MPR: translating b by
+// depth × normal separates them (normal unit, from a towards b).  nullopt when
+// they do not overlap or libccd gives no usable answer.
+struct Penetration {
+  double depth = 0.0;
+  Eigen::Vector3d normal = Eigen::Vector3d::UnitX();
+  Eigen::Vector3d point = Eigen::Vector3d::Zero();  // world, inside the overlap
+};
+std::optional<Penetration> PenetrationMpr(const Piece& a, const Pose& pa, const Piece& b,
+                                          const Pose& pb);
+
+// One point of a contact manifold, world frame.
+struct ContactPoint {
+  Eigen::Vector3d point = Eigen::Vector3d::Zero();    // midway between the surfaces
+  Eigen::Vector3d normal = Eigen::Vector3d::UnitX();  // unit, from a towards b
+  double gap = 0.0;                                   // signed; < 0 overlaps
+};
+
+// Contact manifold of two pieces near contact: when a face of one is
+// parallel to the normal (within ~3°) the other's most opposed face is
+// clipped against it (Sutherland–Hodgman) and every clipped point within
+// `margin` of the reference plane is a contact point (face–face: up to 8,
+// edge–face: 2, vertex–face: 1); otherwise (edge–edge, spheres) the single
+// closest point pair.  `closest` is the pair's Distance result, or for
+// overlapping pieces a result whose normal and distance come from the
+// penetration (distance = −depth).
+std::vector<ContactPoint> Manifold(const Piece& a, const Pose& pa, const Piece& b, const Pose& pb,
+                                   const DistanceResult& closest, double signed_distance,
+                                   double margin);
+
 // Sweep and prune over axis-aligned boxes (the solver passes boxes that
 // bound a body's bounding sphere over a time interval).  Pairs are reported
 // once, as (smaller id, larger id), sorted.  Cost ~ N log N + overlaps.
@@ -112,6 +143,16 @@ struct Motion {
   std::function<Pose(double t)> pose;
   double max_linear_speed = 0.0;   // bound on |v| of the centre of mass
   double max_angular_speed = 0.0;  // bound on |ω|
+  // Optional, tighter: velocity and world angular velocity at the start of
+  // the interval and bounds on how far they change over it.  With these the
+  // distance along the current contact normal n closes no faster than
+  //   |n·(v_b − v_a)| + Δv_a + Δv_b + (|ω_a × n| + Δω_a) r_a + (|ω_b × n| + Δω_b) r_b,
+  // which for bodies sliding or spinning on a contact is far below the
+  // speed bound.
+  Eigen::Vector3d v0 = Eigen::Vector3d::Zero();
+  Eigen::Vector3d w0 = Eigen::Vector3d::Zero();
+  double dv = std::numeric_limits<double>::infinity();
+  double dw = std::numeric_limits<double>::infinity();
 };
 
 struct ImpactResult {
@@ -150,5 +191,26 @@ struct BodyState {
 // magnitude (0 when the bodies are already separating at the point).
 double ApplyImpulse(BodyState& a, BodyState& b, const Eigen::Vector3d& point,
                     const Eigen::Vector3d& normal, double restitution, double friction);
+
+// A contact for the simultaneous solve: bodies by index into the solver's
+// body list (−1: the immovable world), point and normal (from a to b).
+struct SolverContact {
+  int a = -1, b = -1;
+  Eigen::Vector3d point = Eigen::Vector3d::Zero();
+  Eigen::Vector3d normal = Eigen::Vector3d::UnitX();
+  double friction = 0.0;
+  double target = 0.0;          // least normal relative velocity after the solve
+  double normal_impulse = 0.0;  // out: accumulated
+};
+
+// Projected Gauss–Seidel ("sequential impulses") over the contacts of an
+// island: normal impulses ≥ 0 bring each contact's normal relative velocity
+// up to its target, friction impulses stay inside the Coulomb disc
+// |P_t| ≤ μ P_n (static while inside, kinetic on its rim).  Deterministic:
+// contacts in the given order, a fixed number of sweeps or until the
+// largest impulse change is below `tolerance` (an impulse).  Returns the
+// sweeps taken.
+int SolveContacts(std::vector<BodyState>& bodies, std::vector<SolverContact>& contacts,
+                  int max_sweeps, double tolerance);
 
 }  // namespace asgard::collide

@@ -1,5 +1,5 @@
-// Overlap test with libccd's Minkowski Portal Refinement (test oracle and
-// start-of-interval check).
+// Overlap test and penetration with libccd's Minkowski Portal Refinement
+// (test oracle; depth and direction for pushing overlapping bodies apart).
 //
 // Design
 // ------
@@ -89,12 +89,7 @@ bool Finite(const Piece& piece, const Pose& pose) {
   return true;
 }
 
-}  // namespace
-
-std::optional<bool> OverlapMpr(const Piece& a, const Pose& pa, const Piece& b, const Pose& pb) {
-  if (!Finite(a, pa) || !Finite(b, pb)) return std::nullopt;
-  Shape sa{&a, &pa, CoreCentre(a, pa)};
-  Shape sb{&b, &pb, CoreCentre(b, pb)};
+ccd_t Config() {
   ccd_t ccd;
   CCD_INIT(&ccd);
   ccd.support1 = SupportFn;
@@ -103,6 +98,36 @@ std::optional<bool> OverlapMpr(const Piece& a, const Pose& pa, const Piece& b, c
   ccd.center2 = CentreFn;
   ccd.max_iterations = kMaxIterations;
   ccd.mpr_tolerance = kTolerance;
+  return ccd;
+}
+
+}  // namespace
+
+std::optional<Penetration> PenetrationMpr(const Piece& a, const Pose& pa, const Piece& b,
+                                          const Pose& pb) {
+  if (!Finite(a, pa) || !Finite(b, pb)) return std::nullopt;
+  Shape sa{&a, &pa, CoreCentre(a, pa)};
+  Shape sb{&b, &pb, CoreCentre(b, pb)};
+  const ccd_t ccd = Config();
+  ccd_real_t depth = 0;
+  ccd_vec3_t dir, pos;
+  const int result = ccdMPRPenetration(&sa, &sb, &ccd, &depth, &dir, &pos);
+  if (sa.exhausted || sb.exhausted || result != 0) return std::nullopt;
+  Penetration out;
+  out.depth = depth;
+  out.normal = ToEigen(&dir);
+  out.point = ToEigen(&pos);
+  const double length = out.normal.norm();
+  if (!std::isfinite(depth) || !(length > 0.0) || !out.point.allFinite()) return std::nullopt;
+  out.normal /= length;
+  return out;
+}
+
+std::optional<bool> OverlapMpr(const Piece& a, const Pose& pa, const Piece& b, const Pose& pb) {
+  if (!Finite(a, pa) || !Finite(b, pb)) return std::nullopt;
+  Shape sa{&a, &pa, CoreCentre(a, pa)};
+  Shape sb{&b, &pb, CoreCentre(b, pb)};
+  const ccd_t ccd = Config();
   const int result = ccdMPRIntersect(&sa, &sb, &ccd);
   if (sa.exhausted || sb.exhausted) return std::nullopt;
   return result != 0;

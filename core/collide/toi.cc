@@ -89,14 +89,26 @@ std::optional<ImpactResult> TimeOfImpact(const Piece& a, const Motion& ma, const
   const double span = t1 - t0;
   auto resolution = [&](double t) { return kStallRelative * std::max(std::abs(t), span); };
 
+  // Closing-speed bound along the normal of the latest query (see Motion):
+  // the gap along a fixed axis is a lower bound of the distance and equals
+  // it at the query, so stepping by it is as safe as by `bound`.
+  const double ra = ReachRadius(a), rb = ReachRadius(b);
+  auto closing = [&](const DistanceResult& q) {
+    const Eigen::Vector3d& n = q.normal;
+    const double along = std::abs(n.dot(mb.v0 - ma.v0)) + ma.dv + mb.dv +
+                         (ma.w0.cross(n).norm() + ma.dw) * ra +
+                         (mb.w0.cross(n).norm() + mb.dw) * rb;
+    return std::isfinite(along) && along > 0.0 ? std::min(bound, along) : bound;
+  };
   double t = t0;  // safe: distance > separation
   int advances = 0;
   while (true) {
     if (out.iterations >= kMaxQueries) return land(t, r);
-    const double step = (r.distance - 0.5 * separation) / bound;
+    const double speed = closing(r);
+    const double step = (r.distance - 0.5 * separation) / speed;
     const bool slow = advances >= kMaxAdvances || step < resolution(t);
     const double t_next =
-        std::min(t1, slow ? t + std::max(r.distance / bound, resolution(t)) : t + step);
+        std::min(t1, slow ? t + std::max(r.distance / speed, resolution(t)) : t + step);
     ++advances;
     const DistanceResult rn = query(t_next);
     if (!rn.overlapping && rn.distance <= separation && rn.distance > 0.5 * separation) {

@@ -13,27 +13,56 @@ namespace asgard::solver {
 namespace {
 
 constexpr long kEpochs = 1024;
+constexpr double kHopHeight = 1e-3;       // of the body's size: resting hops rise less
+constexpr double kMarginRelative = 0.02;  // contact points kept up to this gap (of size)
+constexpr int kSleepEvents = 12;          // resting events at rest in a row before sleep
+constexpr int kSweeps = 200;              // contact solver sweeps at most
+
+// Impacts in time order; at one instant by pair.
+bool ImpactOrder(const Impact& x, const Impact& y) {
+  return x.t != y.t ? x.t < y.t : std::tie(x.a, x.b) < std::tie(y.a, y.b);
+}
 constexpr double kInf = std::numeric_limits<double>::infinity();
 
 // Range of the cubic Hermite interpolant on [0, 1] ⊇ [s0, s1] (value or
 // derivative), exactly: endpoints and interior critical points.
+// One interval of a waveform: the Hermite cubic plus the explicit method's
+// bubble e s²(1−s)² (waveform.h), s ∈ [0, 1].
 struct Cubic {
-  double a, b, c, d;  // p(s) = a + b s + c s² + d s³
-  double operator()(double s) const { return a + s * (b + s * (c + s * d)); }
-  double Derivative(double s) const { return b + s * (2 * c + 3 * s * d); }
+  double a, b, c, d;  // cubic part: a + b s + c s² + d s³
+  double e = 0.0;     // bubble coefficient
+  double Hermite(double s) const { return a + s * (b + s * (c + s * d)); }
+  double HermiteDerivative(double s) const { return b + s * (2 * c + 3 * s * d); }
+  double operator()(double s) const {
+    const double u = s * (1 - s);
+    return Hermite(s) + e * u * u;
+  }
+  double Derivative(double s) const {
+    return HermiteDerivative(s) + e * 2 * s * (1 - s) * (1 - 2 * s);
+  }
+  double Second(double s) const { return 2 * c + 6 * d * s + e * (2 - 12 * s + 12 * s * s); }
 };
 
-Cubic HermiteCubic(double x0, double f0, double x1, double f1, double h) {
+Cubic HermiteCubic(double x0, double f0, double x1, double f1, double h, double bubble) {
   const double m0 = f0 * h, m1 = f1 * h;
-  return {x0, m0, -3 * x0 - 2 * m0 + 3 * x1 - m1, 2 * x0 + m0 - 2 * x1 + m1};
+  return {x0, m0, -3 * x0 - 2 * m0 + 3 * x1 - m1, 2 * x0 + m0 - 2 * x1 + m1, bubble};
 }
 
 // Critical points of a quadratic q(s) = b + 2c s + 3d s² (for the value) or
 // of the linear derivative of the derivative (for the rate).
 void ValueRange(const Cubic& p, double s0, double s1, double& lo, double& hi) {
+  // The cubic's exact range, widened by the bubble's (0 ≤ s²(1−s)² ≤ 1/16).
+  struct Widen {
+    const Cubic& p;
+    double &lo, &hi;
+    ~Widen() {
+      if (p.e > 0) hi += p.e / 16;
+      else lo += p.e / 16;
+    }
+  } widen{p, lo, hi};
   auto take = [&](double s) {
     if (s < s0 || s > s1) return;
-    const double v = p(s);
+    const double v = p.Hermite(s);
     lo = std::min(lo, v);
     hi = std::max(hi, v);
   };
@@ -51,19 +80,14 @@ void ValueRange(const Cubic& p, double s0, double s1, double& lo, double& hi) {
   take((-B + r) / (2 * A));
 }
 
-// Largest |p''|/h² on [s0, s1] (p'' is linear in s).
-double AccelMax(const Cubic& p, double s0, double s1, double h) {
-  auto acc = [&](double s) { return std::abs(2 * p.c + 6 * p.d * s); };
-  return std::max(acc(s0), acc(s1)) / (h * h);
-}
-
 double RateMax(const Cubic& p, double s0, double s1, double h) {
-  double m = std::max(std::abs(p.Derivative(s0)), std::abs(p.Derivative(s1)));
+  double m = std::max(std::abs(p.HermiteDerivative(s0)), std::abs(p.HermiteDerivative(s1)));
   if (p.d != 0) {
     const double s = -p.c / (3 * p.d);
-    if (s > s0 && s < s1) m = std::max(m, std::abs(p.Derivative(s)));
+    if (s > s0 && s < s1) m = std::max(m, std::abs(p.HermiteDerivative(s)));
   }
-  return m / h;
+  // |d/ds e s²(1−s)²| ≤ |e| √3/18 < 0.1 |e|.
+  return (m + 0.1 * std::abs(p.e)) / h;
 }
 
 // Points of a piece's support feature in direction n (world): the vertices
@@ -150,8 +174,10 @@ Eigen::Vector3d ContactPoint(const collide::Piece& a, const collide::Pose& pa,
   };
   const auto pa2 = flat(fa), pb2 = flat(fb);
   std::vector<Eigen::Vector2d> patch;
-  if (pb2.size() >= 3) patch = Clip(pa2, pb2);
-  else if (pa2.size() >= 3) patch = Clip(pb2, pa2);
+  if (pb2.size() >= 3)
+    patch = Clip(pa2, pb2);
+  else if (pa2.size() >= 3)
+    patch = Clip(pb2, pa2);
   else {
     // Two segments: the centre of their overlap, or the closest points' midpoint.
     return mid;
@@ -173,6 +199,7 @@ CollisionMonitor::CollisionMonitor(Simulation& sim, double separation)
   epoch_length_ = (sys_.t1 - sys_.t0) / kEpochs;
   bodies_.resize(sys_.bodies.size());
   bodies_of_component_.resize(sim.component_count());
+  version_.assign(sys_.bodies.size(), 0);
   double min_radius = kInf;
   for (size_t b = 0; b < sys_.bodies.size(); ++b) {
     const physics::BodyModel& m = sys_.bodies[b];
@@ -190,6 +217,24 @@ CollisionMonitor::CollisionMonitor(Simulation& sim, double separation)
     }
     info.collidable = !info.pieces.empty();
     if (info.collidable) min_radius = std::min(min_radius, info.radius);
+    if (m.first_var < 0 && info.collidable) {
+      // A static body's own box, exact: a wall is a candidate only for what
+      // comes near it, not for everything inside its bounding sphere.
+      const collide::Pose pose = PoseAt(static_cast<int>(b), sys_.t0);
+      info.lo = Eigen::Vector3d::Constant(kInf);
+      info.hi = Eigen::Vector3d::Constant(-kInf);
+      for (const auto& piece : info.pieces) {
+        if (piece.is_sphere) {
+          const Eigen::Vector3d c = pose.p + pose.R * piece.center;
+          info.lo = info.lo.cwiseMin(c - Eigen::Vector3d::Constant(piece.radius));
+          info.hi = info.hi.cwiseMax(c + Eigen::Vector3d::Constant(piece.radius));
+        }
+        for (const auto& v : piece.vertices) {
+          info.lo = info.lo.cwiseMin(pose.p + pose.R * v);
+          info.hi = info.hi.cwiseMax(pose.p + pose.R * v);
+        }
+      }
+    }
     if (m.first_var >= 0) {
       for (int s = 0; s < physics::kBodySlots; ++s)
         info.components.push_back(sim.component_of(m.first_var + s));
@@ -221,9 +266,7 @@ CollisionMonitor::CollisionMonitor(Simulation& sim, double separation)
 
 void CollisionMonitor::AdoptImpacts(const std::vector<Impact>& impacts) {
   impacts_.insert(impacts_.end(), impacts.begin(), impacts.end());
-  std::sort(impacts_.begin(), impacts_.end(), [](const Impact& x, const Impact& y) {
-    return x.t != y.t ? x.t < y.t : std::tie(x.a, x.b) < std::tie(y.a, y.b);
-  });
+  std::sort(impacts_.begin(), impacts_.end(), ImpactOrder);
 }
 
 bool CollisionMonitor::Tested(int a, int b) const {
@@ -284,7 +327,8 @@ void CollisionMonitor::ForEachSegment(int var, double t0, double t1, F&& f) cons
   for (int k = w.KeepIndex(t0); k + 1 < w.size() && w.time(k) < t1; ++k) {
     const double h = w.time(k + 1) - w.time(k);
     if (h <= 0) continue;
-    const Cubic p = HermiteCubic(w.x(k)[i], w.f(k)[i], w.x(k + 1)[i], w.f(k + 1)[i], h);
+    const Cubic p =
+        HermiteCubic(w.x(k)[i], w.f(k)[i], w.x(k + 1)[i], w.f(k + 1)[i], h, w.bubble(k + 1)[i]);
     f(p, std::max(0.0, (t0 - w.time(k)) / h), std::min(1.0, (t1 - w.time(k)) / h), h);
   }
 }
@@ -308,7 +352,10 @@ collide::Motion CollisionMonitor::MotionOf(int b, double t0, double t1) const {
   collide::Motion motion;
   motion.pose = [this, b](double t) { return PoseAt(b, t); };
   const physics::BodyModel& m = sys_.bodies[b];
-  if (m.first_var < 0) return motion;
+  if (m.first_var < 0) {
+    motion.dv = motion.dw = 0.0;  // static
+    return motion;
+  }
   // Bounds on the rates of the interpolated position and orientation: the
   // exact maxima of the Hermite derivatives over the window.
   auto rate_max = [&](int var) {
@@ -331,6 +378,23 @@ collide::Motion CollisionMonitor::MotionOf(int b, double t0, double t1) const {
   const double qmin = std::max(1e-3, std::sqrt(qmin2) - std::sqrt(q2) * (t1 - t0));
   motion.max_linear_speed = std::sqrt(v2);
   motion.max_angular_speed = 2.0 * std::sqrt(q2) / qmin;
+  // Start values and change bounds (collide::Motion): dω_world/dt = R dω_body/dt.
+  double wdot2 = 0;
+  for (int a = 0; a < 3; ++a) {
+    motion.v0[a] = sim_.Rate(m.first_var + physics::kX + a, t0);
+    const int var = m.first_var + physics::kW1 + a;
+    double wdot = std::abs(sim_.Rate(var, t0));
+    ForEachSegment(var, t0, t1, [&](const Cubic& p, double s0, double s1, double h) {
+      wdot = std::max(wdot, RateMax(p, s0, s1, h));
+    });
+    wdot2 += wdot * wdot;
+  }
+  auto val = [&](int slot) { return sim_.Value(m.first_var + slot, t0); };
+  motion.w0 =
+      PoseAt(b, t0).R * Eigen::Vector3d(val(physics::kW1), val(physics::kW2), val(physics::kW3));
+  motion.dv = AccelBound(b, t0, t1) * (t1 - t0);
+  // The orientation interpolant turns at R ω only up to the solver's error.
+  motion.dw = std::sqrt(wdot2) * (t1 - t0) + 1e-3 * motion.max_angular_speed;
   return motion;
 }
 
@@ -352,11 +416,12 @@ bool CollisionMonitor::CheckEpoch() {
     if (!info.collidable) continue;
     Eigen::Vector3d lo, hi;
     const physics::BodyModel& m = sys_.bodies[b];
+    if (m.first_var < 0) {
+      const Eigen::Vector3d r = Eigen::Vector3d::Constant(separation_);
+      broad.Add(static_cast<int>(b), info.lo - r, info.hi + r);
+      continue;
+    }
     for (int a = 0; a < 3; ++a) {
-      if (m.first_var < 0) {
-        lo[a] = hi[a] = m.x0[a];
-        continue;
-      }
       const int var = m.first_var + physics::kX + a;
       lo[a] = hi[a] = sim_.Value(var, e0);
       ForEachSegment(var, e0, e1, [&](const Cubic& p, double s0, double s1, double) {
@@ -375,11 +440,27 @@ bool CollisionMonitor::CheckEpoch() {
     // Only impacts inside this window count: after a rollback, later
     // impacts of other pairs may still be on record.
     for (auto it = impacts_.rbegin(); it != impacts_.rend() && it->t >= e0; ++it)
-      if (it->t < e1 && (it->a == a || it->b == a || it->a == b || it->b == b))
-        start = std::max(start, it->t);
+      if (it->t < e1 && (Involves(*it, a) || Involves(*it, b))) start = std::max(start, it->t);
     if (start >= e1) continue;
-    auto impact = FirstImpact(a, b, start, e1);
-    if (impact && (!best || impact->t < best->t)) best = impact;
+    // Two bodies that cannot move (static or asleep) cannot collide; a
+    // sleeping body is woken only by an event, which restarts the window.
+    auto still = [&](int body) { return sys_.bodies[body].first_var < 0 || Asleep(body, start); };
+    if (still(a) && still(b)) continue;
+    // A pair whose bodies have not changed since it was last searched over
+    // the same interval gives the same answer (an event elsewhere in the
+    // window restarts the check of every pair).
+    PairMemo& memo = memo_[{a, b}];
+    std::optional<Impact> impact;
+    if (memo.valid && memo.start == start && memo.end == e1 && memo.version_a == version_[a] &&
+        memo.version_b == version_[b]) {
+      impact = memo.result;
+    } else {
+      impact = FirstImpact(a, b, start, e1);
+      memo = PairMemo{true, start, e1, version_[a], version_[b], impact};
+    }
+    // An impact at the very end of the run changes nothing the run computes
+    // (velocities after t1 are never used), so it is not answered.
+    if (impact && impact->t < sys_.t1 && (!best || impact->t < best->t)) best = impact;
   }
   if (!best) return true;
   // Impacts that keep coming at one instant (a body jammed between others,
@@ -398,19 +479,40 @@ bool CollisionMonitor::CheckEpoch() {
   return false;
 }
 
-double CollisionMonitor::AccelBound(int body, double t0, double t1) const {
+double CollisionMonitor::AccelBound(int body, double t0, double t1,
+                                    const Eigen::Vector3d& ref) const {
   const physics::BodyModel& m = sys_.bodies[body];
-  if (m.first_var < 0) return 0.0;
+  if (m.first_var < 0) return ref.norm();
   double sum2 = 0;
   for (int axis = 0; axis < 3; ++axis) {
     double amax = 0;
+    // The cubic's p'' is linear on each segment (extremes at the ends); the
+    // bubble's second derivative varies by at most 2|e| over the segment.
     ForEachSegment(m.first_var + physics::kX + axis, t0, t1,
                    [&](const Cubic& p, double s0, double s1, double h) {
-                     amax = std::max(amax, AccelMax(p, s0, s1, h));
+                     for (double s : {s0, s1})
+                       amax =
+                           std::max(amax, std::abs(p.Second(s) / (h * h) - ref[axis]) +
+                                              2 * std::abs(p.e) / (h * h));
                    });
     sum2 += amax * amax;
   }
   return std::sqrt(sum2);
+}
+
+Eigen::Vector3d CollisionMonitor::AccelAt(int body, double t, double t1) const {
+  const physics::BodyModel& m = sys_.bodies[body];
+  Eigen::Vector3d acc = Eigen::Vector3d::Zero();
+  if (m.first_var < 0) return acc;
+  for (int axis = 0; axis < 3; ++axis) {
+    bool first = true;
+    ForEachSegment(m.first_var + physics::kX + axis, t, t1,
+                   [&](const Cubic& p, double s0, double, double h) {
+                     if (first) acc[axis] = p.Second(s0) / (h * h);
+                     first = false;
+                   });
+  }
+  return acc;
 }
 
 std::optional<Impact> CollisionMonitor::FirstImpact(int a, int b, double start, double end) {
@@ -426,13 +528,20 @@ std::optional<Impact> CollisionMonitor::FirstImpact(int a, int b, double start, 
         for (int k = 0; k < 3; ++k) v[k] = sim_.Rate(m.first_var + physics::kX + k, start);
       return v;
     };
-    const double relative = (rate(a) - rate(b)).norm() +
-                            (AccelBound(a, start, end) + AccelBound(b, start, end)) * (end - start);
+    // |Δa(t)| ≤ |Δa(start)| + both bodies' deviations from their start
+    // accelerations: two bodies falling together close at nothing.
+    const Eigen::Vector3d aa = AccelAt(a, start, end), ab = AccelAt(b, start, end);
+    const double dv =
+        ((ab - aa).norm() + AccelBound(a, start, end, aa) + AccelBound(b, start, end, ab)) *
+        (end - start);
+    const double relative = (rate(a) - rate(b)).norm() + dv;
     const double sum = ma.max_linear_speed + mb.max_linear_speed;
     if (relative < sum) {
       ma.max_linear_speed = relative;
       mb.max_linear_speed = 0.0;
     }
+    ma.dv = dv;
+    mb.dv = 0.0;
   }
   // Every distance evaluation in the search places both bodies once.
   ma.pose = [this, a](double t) {
@@ -441,6 +550,16 @@ std::optional<Impact> CollisionMonitor::FirstImpact(int a, int b, double start, 
   };
   std::optional<Impact> first;
   const collide::Pose pa0 = PoseAt(a, start), pb0 = PoseAt(b, start);
+  auto take = [&](double t, const Eigen::Vector3d& point, const Eigen::Vector3d& normal) {
+    if (first && first->t <= t) return;
+    Impact imp;
+    imp.t = t;
+    imp.a = a;
+    imp.b = b;
+    imp.point = point;
+    imp.normal = normal;
+    first = imp;
+  };
   for (const auto& piece_a : bodies_[a].pieces) {
     for (const auto& piece_b : bodies_[b].pieces) {
       collide::DistanceCache cache;
@@ -448,67 +567,51 @@ std::optional<Impact> CollisionMonitor::FirstImpact(int a, int b, double start, 
       ++counters_.distance_queries;
       double from = start;
       double threshold = separation_;
-      if (d0.overlapping && Separating(a, b, start, d0)) {
-        // Just collided and moving apart, but overlapping by about the
-        // solver's error: continue from the moment they are clear.
+      if (d0.overlapping || d0.distance <= separation_) {
+        // In contact at the start.  Overlapping by more than the separation,
+        // or approaching at any contact point: respond now (never ignore an
+        // overlap).  Otherwise look on from the moment they are clear.
+        const auto points = PieceContacts(piece_a, pa0, piece_b, pb0, d0, separation_);
+        double min_gap = kInf;
+        for (const auto& p : points) min_gap = std::min(min_gap, p.gap);
+        if (min_gap < -separation_ || Approach(a, b, start, points) > 0) {
+          take(start, points.front().point, points.front().normal);
+          continue;
+        }
         double step = 1e-12 * std::max(1.0, std::abs(start)) + 1e-9 * (end - start);
         bool clear = false;
         for (from = start + step; from < end; from = std::min(end, from + step), step *= 2) {
-          const auto d = collide::Distance(piece_a, PoseAt(a, from), piece_b, PoseAt(b, from), &cache);
+          const auto d =
+              collide::Distance(piece_a, PoseAt(a, from), piece_b, PoseAt(b, from), &cache);
           ++counters_.distance_queries;
-          if (!d.overlapping) {
+          if (!d.overlapping && d.distance > separation_) {
             clear = true;
-            threshold = std::min(separation_, 0.5 * d.distance);
             break;
           }
         }
-        if (!clear) continue;  // in contact for the whole window, moving apart
-      } else if (d0.overlapping) {
-        if (overlap_warned_.insert({a, b}).second) {
-          scene::Diagnostic d;
-          d.severity = scene::Severity::kWarning;
-          d.message = "bodies " + sys_.bodies[a].name + " and " + sys_.bodies[b].name +
-                      " overlap at t=" + std::to_string(start) +
-                      "; their collisions are ignored while they overlap";
-          warnings_.push_back(d);
+        if (!clear) {
+          // Sliding in contact for the whole window: an approach shows as
+          // the gap closing to half of what it is now.
+          if (d0.overlapping || !(d0.distance > 0)) continue;
+          from = start;
+          threshold = 0.5 * d0.distance;
         }
-        continue;
       }
-      // Pieces already in contact at the start (just collided) must approach
-      // before they count again: the threshold shrinks below the gap.
-      if (!d0.overlapping && d0.distance <= separation_) threshold = 0.5 * d0.distance;
       for (int round = 0; round < 8 && from < end; ++round) {
         ++counters_.narrow_phase_queries;
         auto hit = collide::TimeOfImpact(piece_a, ma, piece_b, mb, from, end, threshold, &cache);
         if (!hit) break;
         if (first && hit->time >= first->t) break;
-        // Approaching at the contact point?
         const auto& c = hit->contact;
-        const Eigen::Vector3d point =
-            ContactPoint(piece_a, PoseAt(a, hit->time), piece_b, PoseAt(b, hit->time), c,
-                         1e-6 * std::max(bodies_[a].radius, bodies_[b].radius));
-        auto point_velocity = [&](int body) {
-          const physics::BodyModel& m = sys_.bodies[body];
-          if (m.first_var < 0) return Eigen::Vector3d::Zero().eval();
-          auto val = [&](int slot) { return sim_.Value(m.first_var + slot, hit->time); };
-          const collide::Pose pose = PoseAt(body, hit->time);
-          const Eigen::Vector3d v(val(physics::kDx), val(physics::kDy), val(physics::kDz));
-          const Eigen::Vector3d w =
-              pose.R * Eigen::Vector3d(val(physics::kW1), val(physics::kW2), val(physics::kW3));
-          return (v + w.cross(point - pose.p)).eval();
-        };
-        // Approaching faster than round-off of the speeds involved (after
-        // an inelastic impact the normal speed is 0 up to a few ulps).
-        const Eigen::Vector3d va = point_velocity(a), vb = point_velocity(b);
-        const double approach = (vb - va).dot(c.normal);
-        if (approach < -1e-12 * (1.0 + va.norm() + vb.norm())) {
-          Impact imp;
-          imp.t = hit->time;
-          imp.a = a;
-          imp.b = b;
-          imp.point = point;
-          imp.normal = c.normal;
-          first = imp;
+        const collide::Pose xa = PoseAt(a, hit->time), xb = PoseAt(b, hit->time);
+        const auto points = PieceContacts(piece_a, xa, piece_b, xb, c, threshold);
+        if (c.overlapping || Approach(a, b, hit->time, points) > 0) {
+          // The impulse of an impact acts at the centre of the contact patch.
+          const Eigen::Vector3d point =
+              c.overlapping ? points.front().point
+                            : ContactPoint(piece_a, xa, piece_b, xb, c,
+                                           1e-6 * std::max(bodies_[a].radius, bodies_[b].radius));
+          take(hit->time, point, c.overlapping ? points.front().normal : c.normal);
           break;
         }
         // Grazing or separating: look further, below the current gap.
@@ -521,77 +624,404 @@ std::optional<Impact> CollisionMonitor::FirstImpact(int a, int b, double start, 
   return first;
 }
 
-// Whether the contact's points move apart along its normal at time t.
-bool CollisionMonitor::Separating(int a, int b, double t, const collide::DistanceResult& c) const {
-  const Eigen::Vector3d point = 0.5 * (c.point_a + c.point_b);
-  auto velocity = [&](int body) -> Eigen::Vector3d {
-    const physics::BodyModel& m = sys_.bodies[body];
-    if (m.first_var < 0) return Eigen::Vector3d::Zero();
-    auto val = [&](int slot) { return sim_.Value(m.first_var + slot, t); };
-    const collide::Pose pose = PoseAt(body, t);
-    const Eigen::Vector3d v(val(physics::kDx), val(physics::kDy), val(physics::kDz));
-    const Eigen::Vector3d w =
-        pose.R * Eigen::Vector3d(val(physics::kW1), val(physics::kW2), val(physics::kW3));
-    return v + w.cross(point - pose.p);
-  };
-  return (velocity(b) - velocity(a)).dot(c.normal) >= 0;
+// ---- contact geometry and state --------------------------------------------------
+
+std::vector<collide::ContactPoint> CollisionMonitor::PieceContacts(
+    const collide::Piece& pa, const collide::Pose& xa, const collide::Piece& pb,
+    const collide::Pose& xb, const collide::DistanceResult& d, double margin) const {
+  if (!d.overlapping) return collide::Manifold(pa, xa, pb, xb, d, d.distance, margin);
+  collide::DistanceResult c = d;
+  double signed_distance = 0.0;
+  if (const auto pen = collide::PenetrationMpr(pa, xa, pb, xb)) {
+    c.normal = pen->normal;
+    c.point_a = pen->point + 0.5 * pen->depth * pen->normal;
+    c.point_b = pen->point - 0.5 * pen->depth * pen->normal;
+    signed_distance = -pen->depth;
+  }
+  return collide::Manifold(pa, xa, pb, xb, c, signed_distance, margin);
+}
+
+CollisionMonitor::PairContact CollisionMonitor::ContactsAt(int a, int b, double t,
+                                                           double margin) const {
+  PairContact out;
+  out.a = a;
+  out.b = b;
+  out.min_gap = kInf;
+  const collide::Pose xa = PoseAt(a, t), xb = PoseAt(b, t);
+  for (const auto& pa : bodies_[a].pieces) {
+    for (const auto& pb : bodies_[b].pieces) {
+      const auto d = collide::Distance(pa, xa, pb, xb);
+      if (!d.overlapping && d.distance > margin) continue;
+      for (const auto& p : PieceContacts(pa, xa, pb, xb, d, margin)) {
+        out.points.push_back(p);
+        out.min_gap = std::min(out.min_gap, p.gap);
+      }
+    }
+  }
+  return out;
+}
+
+Eigen::Vector3d CollisionMonitor::PointVelocity(int body, double t, const Eigen::Vector3d& point,
+                                                Side side) const {
+  const physics::BodyModel& m = sys_.bodies[body];
+  if (m.first_var < 0) return Eigen::Vector3d::Zero();
+  auto val = [&](int slot) { return sim_.Value(m.first_var + slot, t, side); };
+  const collide::Pose pose = PoseAt(body, t);
+  const Eigen::Vector3d v(val(physics::kDx), val(physics::kDy), val(physics::kDz));
+  const Eigen::Vector3d w =
+      pose.R * Eigen::Vector3d(val(physics::kW1), val(physics::kW2), val(physics::kW3));
+  return v + w.cross(point - pose.p);
+}
+
+// Approach speed beyond the round-off of the speeds involved (after an
+// inelastic impact the normal speed is 0 up to a few ulps); > 0 approaches.
+double CollisionMonitor::Approach(int a, int b, double t,
+                                  const std::vector<collide::ContactPoint>& points) const {
+  double most = -kInf;
+  for (const auto& p : points) {
+    const Eigen::Vector3d va = PointVelocity(a, t, p.point), vb = PointVelocity(b, t, p.point);
+    most = std::max(most, -(vb - va).dot(p.normal) - 1e-12 * (1.0 + va.norm() + vb.norm()));
+  }
+  return most;
+}
+
+Eigen::Vector3d CollisionMonitor::Acceleration(int body, double t) const {
+  const physics::BodyModel& m = sys_.bodies[body];
+  Eigen::Vector3d acc = Eigen::Vector3d::Zero();
+  if (m.first_var < 0) return acc;
+  for (int k = 0; k < 3; ++k) acc[k] = sim_.Rate(m.first_var + physics::kDx + k, t, Side::kLeft);
+  return acc;
+}
+
+bool CollisionMonitor::Asleep(int body, double t) const {
+  const physics::BodyModel& m = sys_.bodies[body];
+  return m.first_var >= 0 && sim_.Held(m.first_var + physics::kQw, t);
+}
+
+bool CollisionMonitor::Movable(int body, double t) const {
+  return sys_.bodies[body].first_var >= 0 && !Prescribed(body, t) && !Asleep(body, t);
+}
+
+collide::BodyState CollisionMonitor::StateAt(int body, double t, bool movable) const {
+  const physics::BodyModel& m = sys_.bodies[body];
+  const collide::Pose pose = PoseAt(body, t);
+  collide::BodyState st;
+  st.com = pose.p;
+  if (m.first_var >= 0) {
+    // Right limits: an earlier event at this instant has already jumped them.
+    auto val = [&](int slot) { return sim_.Value(m.first_var + slot, t, Side::kRight); };
+    st.v = {val(physics::kDx), val(physics::kDy), val(physics::kDz)};
+    st.w = pose.R * Eigen::Vector3d(val(physics::kW1), val(physics::kW2), val(physics::kW3));
+  }
+  if (movable) {
+    st.inv_mass = 1.0 / m.mass;
+    st.inv_inertia = pose.R * m.inertia.inverse() * pose.R.transpose();
+  }
+  return st;
+}
+
+double CollisionMonitor::ContactMargin(int a, int b) const {
+  return std::max(4.0 * separation_,
+                  kMarginRelative * std::min(bodies_[a].radius, bodies_[b].radius));
+}
+
+// Resting contact is a train of small hops: a contact pressed together by
+// an acceleration a leaves at a Δ/2 and lands again Δ later, so the average
+// impulse is the force that holds it (and friction, μ times that, the
+// kinetic or static friction force).  The hop rises a Δ²/8, kept below
+// kHopHeight of the body's size, and Δ is at most one window.
+double CollisionMonitor::HopPeriod(double accel, double radius) const {
+  if (!(accel > 0)) return epoch_length_;
+  return std::min(epoch_length_, std::sqrt(8.0 * kHopHeight * radius / accel));
+}
+
+bool CollisionMonitor::Involves(const Impact& impact, int body) {
+  return impact.a == body || impact.b == body ||
+         std::find(impact.bodies.begin(), impact.bodies.end(), body) != impact.bodies.end();
+}
+
+// ---- response ----------------------------------------------------------------------
+
+void CollisionMonitor::WriteVelocities(int body, double t, const collide::BodyState& state) {
+  const physics::BodyModel& m = sys_.bodies[body];
+  // A body resting on something was held there; the impact releases it.
+  for (int a = 0; a < 3; ++a)
+    for (int slot : {physics::kX + a, physics::kDx + a})
+      if (sim_.Held(m.first_var + slot, t)) sim_.ReleaseAt(m.first_var + slot, t);
+  const Eigen::Vector3d w_body = PoseAt(body, t).R.transpose() * state.w;
+  for (int a = 0; a < 3; ++a) {
+    sim_.SetValueAt(m.first_var + physics::kDx + a, t, state.v[a]);
+    sim_.SetValueAt(m.first_var + physics::kW1 + a, t, w_body[a]);
+  }
+}
+
+void CollisionMonitor::Wake(int body, double t) {
+  if (!Asleep(body, t)) return;
+  const physics::BodyModel& m = sys_.bodies[body];
+  for (int s = 0; s < physics::kBodySlots; ++s)
+    if (sim_.Held(m.first_var + s, t)) sim_.ReleaseAt(m.first_var + s, t);
+  ++counters_.wakes;
+  // Whatever sleeps on it wakes too: its support may be about to move.
+  const collide::Pose x = PoseAt(body, t);
+  for (size_t y = 0; y < bodies_.size(); ++y) {
+    const int other = static_cast<int>(y);
+    if (other == body || !bodies_[y].collidable || !Asleep(other, t)) continue;
+    const double margin = ContactMargin(body, other);
+    if ((PoseAt(other, t).p - x.p).norm() > bodies_[body].radius + bodies_[y].radius + margin)
+      continue;
+    if (!ContactsAt(body, other, t, margin).points.empty()) Wake(other, t);
+  }
+}
+
+void CollisionMonitor::Sleep(int body, double t) {
+  const physics::BodyModel& m = sys_.bodies[body];
+  for (int s = 0; s < physics::kBodySlots; ++s)
+    if (sim_.Held(m.first_var + s, t)) sim_.ReleaseAt(m.first_var + s, t);
+  for (int s = 0; s < physics::kBodySlots; ++s) {
+    const int var = m.first_var + s;
+    const bool rate =
+        (s >= physics::kDx && s < physics::kDx + 3) || (s >= physics::kW1 && s < physics::kW1 + 3);
+    if (rate) {
+      sim_.SetValueAt(var, t, 0.0);
+      sim_.HoldAt(var, t, 0.0);
+    } else {
+      sim_.HoldAt(var, t, sim_.Value(var, t));
+    }
+  }
+  ++counters_.sleeps;
+}
+
+// Consecutive resting events, latest first, at which the body was at rest.
+int CollisionMonitor::SlowEvents(int body) const {
+  int count = 0;
+  for (auto it = impacts_.rbegin(); it != impacts_.rend() && count < kSleepEvents; ++it) {
+    if (!Involves(*it, body)) continue;
+    if (!it->resting || std::find(it->slow.begin(), it->slow.end(), body) == it->slow.end()) break;
+    ++count;
+  }
+  return count;
 }
 
 void CollisionMonitor::Respond(const Impact& impact) {
   const double t = impact.t;
-  collide::BodyState state[2];
   const int ids[2] = {impact.a, impact.b};
+  const double margin = ContactMargin(impact.a, impact.b);
+  const PairContact pc = ContactsAt(impact.a, impact.b, t, margin);
+  const Eigen::Vector3d acc_rel = Acceleration(impact.b, t) - Acceleration(impact.a, t);
+  const double hop =
+      HopPeriod(acc_rel.norm(), std::min(bodies_[impact.a].radius, bodies_[impact.b].radius));
+  const double slow_speed = 2.0 * acc_rel.norm() * hop;
+  const double approach = pc.points.empty() ? kInf : Approach(impact.a, impact.b, t, pc.points);
+  // A lone ball on something immovable keeps the seed's bouncing and comes to
+  // rest by the hold below; everything else that arrives slowly rests.
+  auto balls_only = [&](int b) {
+    for (const auto& p : bodies_[b].pieces)
+      if (!p.is_sphere) return false;
+    return true;
+  };
+  const bool ball_on_immovable =
+      pc.points.size() == 1 && ((balls_only(impact.a) && !Movable(impact.b, t)) ||
+                                (balls_only(impact.b) && !Movable(impact.a, t)));
+  if (approach <= slow_speed && !ball_on_immovable && same_instant_ <= 50) {
+    RespondResting(impact);
+    return;
+  }
+  for (int b : ids)
+    if (Asleep(b, t)) Wake(b, t);
+  collide::BodyState state[2];
   bool movable[2];
   for (int s = 0; s < 2; ++s) {
-    const int b = ids[s];
-    const physics::BodyModel& m = sys_.bodies[b];
-    const collide::Pose pose = PoseAt(b, t);
-    collide::BodyState& st = state[s];
-    st.com = pose.p;
-    movable[s] = m.first_var >= 0 && !Prescribed(b, t);
-    if (m.first_var >= 0) {
-      auto val = [&](int slot) { return sim_.Value(m.first_var + slot, t, Side::kLeft); };
-      st.v = {val(physics::kDx), val(physics::kDy), val(physics::kDz)};
-      st.w = pose.R * Eigen::Vector3d(val(physics::kW1), val(physics::kW2), val(physics::kW3));
-    }
-    if (movable[s]) {
-      st.inv_mass = 1.0 / m.mass;
-      st.inv_inertia = pose.R * m.inertia.inverse() * pose.R.transpose();
-    }
+    movable[s] = Movable(ids[s], t);
+    state[s] = StateAt(ids[s], t, movable[s]);
   }
   const double e = same_instant_ > 50
                        ? 0.0
                        : sys_.bodies[impact.a].restitution * sys_.bodies[impact.b].restitution;
   const double mu = std::sqrt(sys_.bodies[impact.a].friction * sys_.bodies[impact.b].friction);
   Impact recorded = impact;
-  recorded.impulse =
-      collide::ApplyImpulse(state[0], state[1], impact.point, impact.normal, e, mu);
+  recorded.bodies = {impact.a, impact.b};
+  recorded.impulse = collide::ApplyImpulse(state[0], state[1], impact.point, impact.normal, e, mu);
+  // Points of the patch other than its centre may still approach (an edge
+  // landing with a spin): they are brought to rest along the normal.
+  Eigen::Vector3d shift[2] = {Eigen::Vector3d::Zero(), Eigen::Vector3d::Zero()};
+  if (!pc.points.empty()) {
+    std::vector<collide::BodyState> bodies = {state[0], state[1]};
+    std::vector<collide::SolverContact> contacts;
+    for (const auto& p : pc.points) {
+      collide::SolverContact c;
+      c.a = 0;
+      c.b = 1;
+      c.point = p.point;
+      c.normal = p.normal;
+      c.friction = mu;
+      c.target = std::max(0.0, (separation_ - std::max(p.gap, 0.0)) / hop);
+      contacts.push_back(c);
+    }
+    collide::SolveContacts(bodies, contacts, kSweeps, 1e-12 * (1.0 + recorded.impulse));
+    state[0] = bodies[0];
+    state[1] = bodies[1];
+    if (pc.min_gap < -separation_) {
+      // Overlapping anyway: pushed apart along the penetration normal.
+      const Eigen::Vector3d n = pc.points.front().normal;
+      const double wa = state[0].inv_mass, wb = state[1].inv_mass;
+      if (wa + wb > 0) {
+        const double depth = separation_ - pc.min_gap;
+        shift[0] = -depth * wa / (wa + wb) * n;
+        shift[1] = depth * wb / (wa + wb) * n;
+      }
+      ++counters_.overlaps_resolved;
+    }
+  }
   ++counters_.impacts;
-  auto pos = std::upper_bound(impacts_.begin(), impacts_.end(), recorded,
-                              [](const Impact& x, const Impact& y) {
-                                return x.t != y.t ? x.t < y.t : std::tie(x.a, x.b) < std::tie(y.a, y.b);
-                              });
+  auto pos = std::upper_bound(impacts_.begin(), impacts_.end(), recorded, ImpactOrder);
   impacts_.insert(pos, recorded);
   responding_ = true;
   respond_time_ = t;
   for (int s = 0; s < 2; ++s) {
     if (!movable[s]) continue;
     const physics::BodyModel& m = sys_.bodies[ids[s]];
-    const Eigen::Matrix3d R = PoseAt(ids[s], t).R;
-    // A body resting on something was held there; the impact releases it.
+    WriteVelocities(ids[s], t, state[s]);
+    if (shift[s].squaredNorm() > 0)
+      for (int a = 0; a < 3; ++a)
+        sim_.SetValueAt(m.first_var + physics::kX + a, t,
+                        sim_.Value(m.first_var + physics::kX + a, t, Side::kRight) + shift[s][a]);
+    if (!ball_on_immovable) continue;
+    const std::vector<int> held =
+        RestingAxes(ids[s], s == 0 ? impact.normal : -impact.normal, movable[1 - s], t, state[s].v);
     for (int a = 0; a < 3; ++a)
-      for (int slot : {physics::kX + a, physics::kDx + a})
-        if (sim_.Held(m.first_var + slot, t)) sim_.ReleaseAt(m.first_var + slot, t);
-    const std::vector<int> held = RestingAxes(ids[s], s == 0 ? impact.normal : -impact.normal,
-                                              movable[1 - s], t, state[s].v);
-    const Eigen::Vector3d w_body = R.transpose() * state[s].w;
-    for (int a = 0; a < 3; ++a) {
-      sim_.SetValueAt(m.first_var + physics::kDx + a, t, state[s].v[a]);
-      sim_.SetValueAt(m.first_var + physics::kW1 + a, t, w_body[a]);
-    }
+      if (std::find(held.begin(), held.end(), a) != held.end())
+        sim_.SetValueAt(m.first_var + physics::kDx + a, t, state[s].v[a]);
     for (int a : held) {
       sim_.HoldAt(m.first_var + physics::kX + a, t, sim_.Value(m.first_var + physics::kX + a, t));
       sim_.HoldAt(m.first_var + physics::kDx + a, t, 0.0);
+    }
+  }
+  responding_ = false;
+}
+
+// Slow contacts are solved together: every body in contact with the pair,
+// and transitively with those (through movable bodies only — static,
+// sleeping and prescribed bodies end the island), gets one simultaneous
+// solve of all its contact points (SolveContacts) with the hop target of
+// HopPeriod.  Bodies found at rest kSleepEvents times in a row go to sleep
+// together: all their variables are held, and they cost nothing until an
+// impact wakes them.
+void CollisionMonitor::RespondResting(const Impact& impact) {
+  const double t = impact.t;
+  std::vector<int> members;
+  std::map<int, int> index;  // body → row in `states`
+  std::vector<collide::BodyState> states;
+  auto add = [&](int body) {
+    if (index.count(body)) return;
+    const bool movable = Movable(body, t);
+    index[body] = static_cast<int>(states.size());
+    states.push_back(StateAt(body, t, movable));
+    if (movable) members.push_back(body);
+  };
+  add(impact.a);
+  add(impact.b);
+  std::vector<PairContact> pairs;
+  std::set<std::pair<int, int>> seen;
+  for (size_t q = 0; q < members.size(); ++q) {
+    const int x = members[q];
+    const Eigen::Vector3d px = PoseAt(x, t).p;
+    for (size_t y = 0; y < bodies_.size(); ++y) {
+      const int other = static_cast<int>(y);
+      if (other == x || !bodies_[y].collidable || !Tested(x, other)) continue;
+      const auto key = std::minmax(x, other);
+      if (seen.count(key)) continue;
+      const double margin = ContactMargin(x, other);
+      if ((PoseAt(other, t).p - px).norm() > bodies_[x].radius + bodies_[y].radius + margin)
+        continue;
+      PairContact pc = ContactsAt(key.first, key.second, t, margin);
+      if (pc.points.empty()) continue;
+      seen.insert(key);
+      add(other);
+      pairs.push_back(std::move(pc));
+    }
+  }
+  // Overlaps are pushed apart first (positions), pairs in order.
+  std::map<int, Eigen::Vector3d> shift;
+  for (const PairContact& pc : pairs) {
+    if (!(pc.min_gap < -separation_)) continue;
+    const collide::BodyState& sa = states[static_cast<size_t>(index[pc.a])];
+    const collide::BodyState& sb = states[static_cast<size_t>(index[pc.b])];
+    const double wa = sa.inv_mass, wb = sb.inv_mass;
+    if (!(wa + wb > 0)) continue;
+    const Eigen::Vector3d n = pc.points.front().normal;
+    const double depth = separation_ - pc.min_gap;
+    if (wa > 0)
+      shift.try_emplace(pc.a, Eigen::Vector3d::Zero()).first->second -= depth * wa / (wa + wb) * n;
+    if (wb > 0)
+      shift.try_emplace(pc.b, Eigen::Vector3d::Zero()).first->second += depth * wb / (wa + wb) * n;
+    ++counters_.overlaps_resolved;
+  }
+  std::map<int, Eigen::Vector3d> acc;
+  for (const auto& [body, row] : index)
+    acc[body] = states[static_cast<size_t>(row)].inv_mass > 0 || Prescribed(body, t)
+                    ? Acceleration(body, t)
+                    : Eigen::Vector3d::Zero();
+  double press = 0.0, radius = kInf;
+  for (const PairContact& pc : pairs) {
+    radius = std::min({radius, bodies_[pc.a].radius, bodies_[pc.b].radius});
+    for (const auto& p : pc.points) press = std::max(press, -p.normal.dot(acc[pc.b] - acc[pc.a]));
+  }
+  const double hop = HopPeriod(press, std::isfinite(radius) ? radius : 1.0);
+  std::vector<collide::SolverContact> contacts;
+  double scale = 0.0;
+  for (const PairContact& pc : pairs) {
+    const bool pushed = pc.min_gap < -separation_;
+    const double mu = std::sqrt(sys_.bodies[pc.a].friction * sys_.bodies[pc.b].friction);
+    for (const auto& p : pc.points) {
+      collide::SolverContact c;
+      c.a = index[pc.a];
+      c.b = index[pc.b];
+      c.point = p.point;
+      c.normal = p.normal;
+      c.friction = mu;
+      const double pressed = std::max(0.0, -p.normal.dot(acc[pc.b] - acc[pc.a]));
+      const double gap = pushed ? separation_ : p.gap;
+      c.target = 0.5 * pressed * hop + (separation_ - gap) / hop;
+      contacts.push_back(c);
+    }
+  }
+  for (int body : members)
+    scale = std::max(
+        scale, sys_.bodies[body].mass *
+                   (acc[body].norm() * hop + states[static_cast<size_t>(index[body])].v.norm()));
+  collide::SolveContacts(states, contacts, kSweeps, 1e-9 * scale + 1e-300);
+  Impact recorded = impact;
+  recorded.resting = true;
+  recorded.bodies = {impact.a, impact.b};
+  for (int body : members)
+    if (body != impact.a && body != impact.b) recorded.bodies.push_back(body);
+  for (const auto& c : contacts) recorded.impulse += c.normal_impulse;
+  // At rest: moving no faster than the hop, and not turning faster.
+  bool all_asleep = !members.empty();
+  for (int body : members) {
+    const collide::BodyState& st = states[static_cast<size_t>(index[body])];
+    const double limit = acc[body].norm() * hop + 1e-6 * bodies_[body].radius / hop;
+    const bool slow = st.v.norm() <= limit && st.w.norm() * bodies_[body].radius <= limit;
+    if (slow) recorded.slow.push_back(body);
+    if (!slow || SlowEvents(body) + 1 < kSleepEvents) all_asleep = false;
+  }
+  ++counters_.impacts;
+  ++counters_.resting_events;
+  counters_.contacts_solved += static_cast<long>(contacts.size());
+  auto pos = std::upper_bound(impacts_.begin(), impacts_.end(), recorded, ImpactOrder);
+  impacts_.insert(pos, recorded);
+  responding_ = true;
+  respond_time_ = t;
+  for (int body : members) {
+    const physics::BodyModel& m = sys_.bodies[body];
+    if (auto it = shift.find(body); it != shift.end())
+      for (int a = 0; a < 3; ++a)
+        sim_.SetValueAt(m.first_var + physics::kX + a, t,
+                        sim_.Value(m.first_var + physics::kX + a, t, Side::kRight) + it->second[a]);
+    if (all_asleep) {
+      Sleep(body, t);
+    } else {
+      WriteVelocities(body, t, states[static_cast<size_t>(index[body])]);
     }
   }
   responding_ = false;
@@ -604,8 +1034,7 @@ void CollisionMonitor::Respond(const Impact& impact) {
 // normal stops and is held: along that axis when the normal is a coordinate
 // axis, in all three translations otherwise.  Returns the held axes.
 std::vector<int> CollisionMonitor::RestingAxes(int body, const Eigen::Vector3d& n_into,
-                                               bool partner_movable, double t,
-                                               Eigen::Vector3d& v) {
+                                               bool partner_movable, double t, Eigen::Vector3d& v) {
   if (partner_movable) return {};
   const physics::BodyModel& m = sys_.bodies[body];
   Eigen::Vector3d a;
@@ -627,7 +1056,10 @@ std::vector<int> CollisionMonitor::RestingAxes(int body, const Eigen::Vector3d& 
 // ---- invalidation ------------------------------------------------------------------
 
 void CollisionMonitor::OnTruncate(int component, double kept) {
-  for (int b : bodies_of_component_[component]) truncated_.push_back({b, kept});
+  for (int b : bodies_of_component_[component]) {
+    truncated_.push_back({b, kept});
+    ++version_[static_cast<size_t>(b)];
+  }
 }
 
 void CollisionMonitor::AfterTruncate() {
@@ -644,12 +1076,12 @@ void CollisionMonitor::AfterTruncate() {
       const double limit = responding_ ? std::max(kept, respond_time_) : kept;
       for (size_t i = 0; i < impacts_.size();) {
         const Impact imp = impacts_[i];
-        if (imp.t > limit && (imp.a == b || imp.b == b)) {
+        if (imp.t > limit && Involves(imp, b)) {
           impacts_.erase(impacts_.begin() + static_cast<long>(i));
           ++counters_.invalidated_impacts;
           // Both bodies' jumps at the impact are void; the partner's data
           // after it must be recomputed.
-          for (int body : {imp.a, imp.b})
+          for (int body : imp.bodies.empty() ? std::vector<int>{imp.a, imp.b} : imp.bodies)
             for (int c : bodies_[body].components) sim_.Truncate(c, imp.t, /*strict=*/true);
           continue;
         }

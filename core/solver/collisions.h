@@ -48,20 +48,30 @@
 namespace asgard::solver {
 
 struct CollisionCounters {
-  long windows = 0;              // epochs checked
-  long broad_phase_pairs = 0;    // candidate pairs from sweep and prune
-  long narrow_phase_queries = 0; // time-of-impact searches
-  long distance_queries = 0;     // distance evaluations inside them
-  long impacts = 0;              // impulses applied (including later undone ones)
-  long invalidated_impacts = 0;  // impacts undone by an earlier truncation
+  long windows = 0;               // epochs checked
+  long broad_phase_pairs = 0;     // candidate pairs from sweep and prune
+  long narrow_phase_queries = 0;  // time-of-impact searches
+  long distance_queries = 0;      // distance evaluations inside them
+  long impacts = 0;               // impulses applied (including later undone ones)
+  long invalidated_impacts = 0;   // impacts undone by an earlier truncation
+  long resting_events = 0;        // island solves of slow contacts (included in impacts)
+  long contacts_solved = 0;       // contact points in those solves
+  long overlaps_resolved = 0;     // overlapping pairs pushed apart
+  long sleeps = 0;                // bodies put to sleep
+  long wakes = 0;                 // sleeping bodies woken
 };
 
 struct Impact {
   double t = 0.0;
-  int a = -1, b = -1;            // body indices, a < b
-  double impulse = 0.0;          // normal impulse magnitude
+  int a = -1, b = -1;    // body indices, a < b
+  double impulse = 0.0;  // normal impulse magnitude
   Eigen::Vector3d point = Eigen::Vector3d::Zero();
   Eigen::Vector3d normal = Eigen::Vector3d::UnitX();
+  // Every body whose variables jump at t (a and b, and the rest of a
+  // resting island); an edit or truncation of any of them voids the event.
+  std::vector<int> bodies;
+  std::vector<int> slow;  // bodies of the island found at rest at this event
+  bool resting = false;   // a simultaneous solve of slow contacts, not an impact
 };
 
 class CollisionMonitor {
@@ -84,11 +94,13 @@ class CollisionMonitor {
  private:
   struct BodyInfo {
     bool collidable = false;
-    bool infinite = false;                // static
+    bool infinite = false;  // static
     std::vector<collide::Piece> pieces;
-    double radius = 0.0;                  // max piece bound radius
-    std::vector<int> components;          // components holding its variables
-    double end = 0.0;                     // time all its variables are computed to
+    double radius = 0.0;                           // max piece bound radius
+    Eigen::Vector3d lo = Eigen::Vector3d::Zero();  // static: world box of its pieces
+    Eigen::Vector3d hi = Eigen::Vector3d::Zero();
+    std::vector<int> components;  // components holding its variables
+    double end = 0.0;             // time all its variables are computed to
   };
 
   void AfterStep(int component);
@@ -100,11 +112,43 @@ class CollisionMonitor {
   bool CheckEpoch();
   std::optional<Impact> FirstImpact(int a, int b, double start, double end);
   void Respond(const Impact& impact);
-  bool Separating(int a, int b, double t, const collide::DistanceResult& c) const;
+  struct PairContact {
+    int a = -1, b = -1;
+    std::vector<collide::ContactPoint> points;
+    double min_gap = 0.0;
+  };
+  // Contact points of every piece pair of bodies a, b within `margin` at t
+  // (overlapping pieces through MPR penetration).
+  PairContact ContactsAt(int a, int b, double t, double margin) const;
+  std::vector<collide::ContactPoint> PieceContacts(
+      const collide::Piece& pa, const collide::Pose& xa, const collide::Piece& pb,
+      const collide::Pose& xb, const collide::DistanceResult& d, double margin) const;
+  // Largest approach speed (−normal relative velocity) over the points.
+  double Approach(int a, int b, double t, const std::vector<collide::ContactPoint>& points) const;
+  Eigen::Vector3d PointVelocity(int body, double t, const Eigen::Vector3d& point,
+                                Side side = Side::kRight) const;
+  Eigen::Vector3d Acceleration(int body, double t) const;
+  bool Asleep(int body, double t) const;
+  bool Movable(int body, double t) const;
+  collide::BodyState StateAt(int body, double t, bool movable) const;
+  double ContactMargin(int a, int b) const;
+  // The hop period of resting contact (see collisions.cc).
+  double HopPeriod(double accel, double radius) const;
+  void RespondResting(const Impact& impact);
+  void WriteVelocities(int body, double t, const collide::BodyState& state);
+  void Wake(int body, double t);
+  void Sleep(int body, double t);
+  int SlowEvents(int body) const;
+  static bool Involves(const Impact& impact, int body);
   std::vector<int> RestingAxes(int body, const Eigen::Vector3d& n_into, bool partner_movable,
                                double t, Eigen::Vector3d& v);
   collide::Motion MotionOf(int body, double t0, double t1) const;
-  double AccelBound(int body, double t0, double t1) const;
+  // Bound on |a(t) − ref| over [t0, t1] for the position interpolant's
+  // acceleration a; AccelAt is that acceleration at t (the segment after t,
+  // up to t1).
+  double AccelBound(int body, double t0, double t1,
+                    const Eigen::Vector3d& ref = Eigen::Vector3d::Zero()) const;
+  Eigen::Vector3d AccelAt(int body, double t, double t1) const;
   collide::Pose PoseAt(int body, double t) const;
   bool Prescribed(int body, double t) const;
   template <typename F>
@@ -115,8 +159,8 @@ class CollisionMonitor {
   const physics::EquationSystem& sys_;
   double separation_;
   double epoch_length_;
-  long epoch_ = 0;       // current epoch
-  long pending_ = 0;     // collidable bodies not yet computed past its end
+  long epoch_ = 0;    // current epoch
+  long pending_ = 0;  // collidable bodies not yet computed past its end
   std::vector<BodyInfo> bodies_;
   std::vector<std::vector<int>> bodies_of_component_;
   std::set<std::pair<int, int>> excluded_;  // directly linked parts of one artbody
@@ -124,6 +168,16 @@ class CollisionMonitor {
   std::set<std::pair<int, int>> overlap_warned_;
   std::vector<std::pair<int, double>> truncated_;  // (body, kept) awaiting AfterTruncate
   std::vector<scene::Diagnostic> warnings_;
+  // Last search of each pair in the current window, valid while neither
+  // body changed (version_ counts truncations of a body's components).
+  struct PairMemo {
+    bool valid = false;
+    double start = 0.0, end = 0.0;
+    long version_a = 0, version_b = 0;
+    std::optional<Impact> result;
+  };
+  std::map<std::pair<int, int>, PairMemo> memo_;
+  std::vector<long> version_;
   CollisionCounters counters_;
   bool responding_ = false;
   double last_impact_time_ = -1e300;

@@ -1,0 +1,128 @@
+// Simultaneous contact impulses over an island: projected Gauss–Seidel.
+//
+// Design
+// ------
+// Each contact has a normal impulse λ_n ≥ 0 and a tangential impulse λ_t in
+// the contact plane, accumulated over sweeps (Catto's sequential impulses).
+// One sweep visits the contacts in order; per contact:
+//   normal:   Δλ = (target − u·n) / (nᵀK n),  λ_n ← max(0, λ_n + Δλ)
+//   friction: Δλ_t = −K_t⁻¹ u_t (2×2 tangential block), λ_t ← λ_t + Δλ_t
+//             projected on the disc |λ_t| ≤ μ λ_n
+// where u is the relative velocity at the point (b − a) and K the contact's
+// inverse effective mass (impulse.cc).  A contact inside the disc sticks
+// (static friction: its tangential velocity is cancelled); on the rim it
+// slides with the kinetic force μ λ_n opposing the slip.  Clamping the
+// accumulated impulse, not the increment, lets contacts that were pushed too
+// hard early in a sweep give impulse back later.  Stops when no impulse
+// changes by more than `tolerance` in a sweep.
+//
+// Rejected alternatives:
+//   * A Lemke / Dantzig LCP per island: exact for frictionless contact, but
+//     pivoting is fragile with the redundant contacts of a box on a face (four
+//     points, three independent constraints) and friction makes it an NCP.
+//   * Friction as a pyramid (box clamp per tangent): anisotropic — a box
+//     would slide differently along the floor's axes than diagonally.
+#include <algorithm>
+#include <cmath>
+
+#include "core/collide/collide.h"
+
+namespace asgard::collide {
+namespace {
+
+struct Row {
+  Eigen::Vector3d ra, rb, n, t1, t2;
+  double inv_kn = 0.0;
+  Eigen::Matrix2d inv_kt = Eigen::Matrix2d::Zero();
+  Eigen::Vector2d lambda_t = Eigen::Vector2d::Zero();
+};
+
+BodyState& Get(std::vector<BodyState>& bodies, int i, BodyState& world) {
+  return i < 0 ? world : bodies[static_cast<size_t>(i)];
+}
+
+Eigen::Vector3d VelocityAt(const BodyState& s, const Eigen::Vector3d& r) {
+  return s.v + s.w.cross(r);
+}
+
+void Push(BodyState& s, const Eigen::Vector3d& r, const Eigen::Vector3d& p, double sign) {
+  s.v += sign * s.inv_mass * p;
+  s.w += sign * (s.inv_inertia * r.cross(p));
+}
+
+// Change of the relative velocity at the contact per unit impulse along x,
+// projected on y.
+double Coupling(const BodyState& a, const BodyState& b, const Row& row, const Eigen::Vector3d& x,
+                const Eigen::Vector3d& y) {
+  return (a.inv_mass + b.inv_mass) * x.dot(y) +
+         (a.inv_inertia * row.ra.cross(x)).cross(row.ra).dot(y) +
+         (b.inv_inertia * row.rb.cross(x)).cross(row.rb).dot(y);
+}
+
+}  // namespace
+
+int SolveContacts(std::vector<BodyState>& bodies, std::vector<SolverContact>& contacts,
+                  int max_sweeps, double tolerance) {
+  BodyState world;  // immovable: zero inverse mass and inertia, at rest
+  std::vector<Row> rows(contacts.size());
+  for (size_t i = 0; i < contacts.size(); ++i) {
+    SolverContact& c = contacts[i];
+    Row& row = rows[i];
+    const BodyState& a = Get(bodies, c.a, world);
+    const BodyState& b = Get(bodies, c.b, world);
+    row.n = c.normal.normalized();
+    row.t1 = row.n.unitOrthogonal();
+    row.t2 = row.n.cross(row.t1);
+    row.ra = c.point - a.com;
+    row.rb = c.point - b.com;
+    const double kn = Coupling(a, b, row, row.n, row.n);
+    row.inv_kn = kn > 0.0 ? 1.0 / kn : 0.0;
+    Eigen::Matrix2d kt;
+    kt << Coupling(a, b, row, row.t1, row.t1), Coupling(a, b, row, row.t2, row.t1),
+        Coupling(a, b, row, row.t1, row.t2), Coupling(a, b, row, row.t2, row.t2);
+    const double det = kt.determinant();
+    if (det > 0.0 && kt(0, 0) > 0.0) row.inv_kt = kt.inverse();
+    c.normal_impulse = 0.0;
+  }
+  int sweep = 0;
+  while (sweep < max_sweeps) {
+    ++sweep;
+    double change = 0.0;
+    for (size_t i = 0; i < contacts.size(); ++i) {
+      SolverContact& c = contacts[i];
+      Row& row = rows[i];
+      BodyState& a = Get(bodies, c.a, world);
+      BodyState& b = Get(bodies, c.b, world);
+      if (row.inv_kn == 0.0) continue;
+      Eigen::Vector3d u = VelocityAt(b, row.rb) - VelocityAt(a, row.ra);
+      const double old_n = c.normal_impulse;
+      c.normal_impulse = std::max(0.0, old_n + (c.target - u.dot(row.n)) * row.inv_kn);
+      const Eigen::Vector3d pn = (c.normal_impulse - old_n) * row.n;
+      Push(a, row.ra, pn, -1.0);
+      Push(b, row.rb, pn, +1.0);
+      change = std::max(change, std::abs(c.normal_impulse - old_n));
+      if (c.friction > 0.0 && row.inv_kt(0, 0) > 0.0) {
+        u = VelocityAt(b, row.rb) - VelocityAt(a, row.ra);
+        const Eigen::Vector2d ut(u.dot(row.t1), u.dot(row.t2));
+        const Eigen::Vector2d old_t = row.lambda_t;
+        Eigen::Vector2d next = old_t - row.inv_kt * ut;
+        const double limit = c.friction * c.normal_impulse;
+        const double length = next.norm();
+        if (length > limit) next *= limit / length;
+        row.lambda_t = next;
+        const Eigen::Vector2d d = next - old_t;
+        const Eigen::Vector3d pt = d.x() * row.t1 + d.y() * row.t2;
+        Push(a, row.ra, pt, -1.0);
+        Push(b, row.rb, pt, +1.0);
+        change = std::max(change, d.norm());
+      }
+    }
+    if (change <= tolerance) break;
+  }
+  // Bodies of infinite mass are never written: `world` absorbs their rows,
+  // and a listed body with zero inverse mass and inertia is left as it was
+  // by Push (both terms vanish).
+  return sweep;
+}
+
+}  // namespace asgard::collide
