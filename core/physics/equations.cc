@@ -288,7 +288,7 @@ class Builder {
           {"ddz", {2, 2}}};
       auto f = kCurveFields.find(field);
       if (f == kCurveFields.end()) return std::nullopt;
-      return P.Extern(3 * c->second + f->second.first, f->second.second);
+      return P.Extern(CurveFunction(c->second, f->second.first), f->second.second);
     }
     const int b = sys_.FindBody(owner);
     if (b < 0) return std::nullopt;
@@ -442,9 +442,9 @@ class Builder {
         return;
       }
       for (int a = 0; a < 3; ++a) {
-        p2[a] = P.Extern(3 * c->second + a, 0);
-        v2[a] = P.Extern(3 * c->second + a, 1);
-        joint.p_ddot[a] = P.Extern(3 * c->second + a, 2);
+        p2[a] = P.Extern(CurveFunction(c->second, a), 0);
+        v2[a] = P.Extern(CurveFunction(c->second, a), 1);
+        joint.p_ddot[a] = P.Extern(CurveFunction(c->second, a), 2);
       }
       joint.p = p2;
       joint.p_dot = v2;
@@ -633,7 +633,7 @@ class Builder {
       return;
     }
     const int c = curve_index_.at(t.name);
-    auto ext = [&](int axis, int order) { return P.Extern(3 * c + axis, order); };
+    auto ext = [&](int axis, int order) { return P.Extern(CurveFunction(c, axis), order); };
     const int v0 = m.first_var;
     std::vector<std::pair<int, NodeId>> values;
     using State = scene::Trajectory::State;
@@ -737,7 +737,7 @@ class Builder {
         CollectExterns(e, fns, seen);
       }
       for (int fn : fns) {
-        for (double t : sys_.curves[fn / 3]->times) bps.push_back(t);
+        for (double t : sys_.curves[CurveOfFunction(fn)]->times) bps.push_back(t);
       }
       std::erase_if(bps, [&](double t) { return !(t > t0 && t < t1); });
       std::sort(bps.begin(), bps.end());
@@ -773,7 +773,7 @@ std::array<double, kBodySlots> InitialValues(const BodyModel& m) {
 expr::ExternFn EquationSystem::externs() const {
   auto curves_copy = curves;
   return [curves_copy](int fn, int order, double t) {
-    return curves_copy[fn / 3]->Evaluate(fn % 3, order, t);
+    return curves_copy[CurveOfFunction(fn)]->Evaluate(AxisOfFunction(fn), order, t);
   };
 }
 

@@ -105,6 +105,12 @@ struct BodyModel {
 
 struct TrajectoryCurve;  // piecewise cubic Bézier, see trajectory.h
 
+// Each trajectory curve is three external functions of time (expr::Extern),
+// one per axis: this is the one place that numbers them.
+constexpr int CurveFunction(int curve, int axis) { return 3 * curve + axis; }
+constexpr int CurveOfFunction(int fn) { return fn / 3; }
+constexpr int AxisOfFunction(int fn) { return fn % 3; }
+
 // An exact ball joint: point s_a of body a coincides with point s_b of body b,
 // or (body_b < 0) with the point p(t) of space.  Anchors are in body axes
 // from the centre of mass.
@@ -125,7 +131,7 @@ struct EquationSystem {
   expr::Pool pool;
   std::vector<StateVariable> variables;
   std::vector<BodyModel> bodies;
-  std::vector<std::shared_ptr<const TrajectoryCurve>> curves;  // Extern fn = 3*curve + axis
+  std::vector<std::shared_ptr<const TrajectoryCurve>> curves;  // see CurveFunction
   std::vector<std::pair<int, int>> body_links;  // bodies joined by a link (for artbody rules)
   std::vector<Joint> joints;                      // exact links
   double t0 = 0.0;

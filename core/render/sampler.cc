@@ -101,7 +101,7 @@ struct SceneSampler::Evaluator {
     std::string_view axis = field;
     while (!axis.empty() && axis[0] == 'd') ++order, axis.remove_prefix(1);
     if (axis.size() != 1 || axis[0] < 'x' || axis[0] > 'z' || order > 2) return std::nullopt;
-    return pool.Extern(3 * c->second + (axis[0] - 'x'), order);
+    return pool.Extern(physics::CurveFunction(c->second, axis[0] - 'x'), order);
   }
 
   // Parses three texts; on success appends them to `outputs` and returns the
@@ -193,7 +193,7 @@ SceneSampler::SceneSampler(const scene::Scene& scene, const physics::EquationSys
   }
   if (!ev.outputs.empty()) ev.tape = expr::Tape::Compile(ev.pool, ev.outputs);
   ev.externs = [curves = &ev.curves](int fn, int order, double t) {
-    return (*curves)[fn / 3].Evaluate(fn % 3, order, t);
+    return (*curves)[physics::CurveOfFunction(fn)].Evaluate(physics::AxisOfFunction(fn), order, t);
   };
 }
 

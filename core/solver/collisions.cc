@@ -17,6 +17,19 @@ constexpr double kHopHeight = 1e-3;       // of the body's size: resting hops ri
 constexpr double kMarginRelative = 0.02;  // contact points kept up to this gap (of size)
 constexpr int kSleepEvents = 12;          // resting events at rest in a row before sleep
 constexpr int kSweeps = 200;              // contact solver sweeps at most
+// The landing gap: at least this fraction of the smallest body's radius
+// (double precision cannot place bodies closer meaningfully).
+constexpr double kMinSeparation = 1e-8;
+// Patch features within this fraction of the larger radius count as touching.
+constexpr double kPatchTolerance = 1e-6;
+// A rise after an impact below this fraction of the radius is resting
+// contact (further bounces would be invisible and infinitely many).
+constexpr double kRestingRise = 1e-6;
+// Approach speeds within this many roundings of the speeds are no approach.
+constexpr double kApproachRoundOff = 1e-12;
+// The conservative-advancement search starts with a step of this fraction
+// of the time (round-off) plus kSearchStartWindow of the interval.
+constexpr double kSearchStartTime = 1e-12, kSearchStartWindow = 1e-9;
 
 // Impacts in time order; at one instant by pair.
 bool ImpactOrder(const Impact& x, const Impact& y) {
@@ -107,8 +120,8 @@ std::vector<Eigen::Vector3d> SupportFeature(const collide::Piece& piece, const c
   return out;
 }
 
-// Convex polygon (2D, counter-clockwise) of a point set: gift wrapping,
-// collinear points dropped.
+// Convex polygon (2D, counter-clockwise) of a point set: Andrew's monotone
+// chain over the points sorted by x then y, collinear points dropped.
 std::vector<Eigen::Vector2d> ConvexPolygon(std::vector<Eigen::Vector2d> pts) {
   std::sort(pts.begin(), pts.end(), [](const auto& a, const auto& b) {
     return a.x() != b.x() ? a.x() < b.x() : a.y() < b.y();
@@ -250,7 +263,7 @@ CollisionMonitor::CollisionMonitor(Simulation& sim, double separation)
   // so the gap must exceed that error or the re-stepped bodies would overlap.
   if (separation_ <= 0) {
     const double r = std::isfinite(min_radius) ? min_radius : 1.0;
-    separation_ = std::max(1e-8 * r, sim.options().rtol * r + sim.options().atol);
+    separation_ = std::max(kMinSeparation * r, sim.options().rtol * r + sim.options().atol);
   }
   for (auto [a, b] : sys_.body_links) {
     const auto& ma = sys_.bodies[a];
@@ -258,6 +271,12 @@ CollisionMonitor::CollisionMonitor(Simulation& sim, double separation)
     if (!ma.artbody.empty() && ma.artbody == mb.artbody)
       excluded_.insert({std::min(a, b), std::max(a, b)});
   }
+  // A scene in which no pair can collide (every body -ct 0, or joined in
+  // one articulated body) needs no windows at all.
+  idle_ = true;
+  for (size_t a = 0; a < bodies_.size() && idle_; ++a)
+    for (size_t b = a + 1; b < bodies_.size() && idle_; ++b)
+      if (Tested(static_cast<int>(a), static_cast<int>(b))) idle_ = false;
   sim.after_step = [this](Simulation&, int c) { AfterStep(c); };
   sim.on_truncate = [this](Simulation&, int c, double kept) { OnTruncate(c, kept); };
   sim.after_truncate = [this](Simulation&) { AfterTruncate(); };
@@ -294,7 +313,7 @@ void CollisionMonitor::UpdateEnd(int b) {
 }
 
 void CollisionMonitor::StartEpoch(long k) {
-  epoch_ = k;
+  epoch_ = idle_ ? kEpochs : k;
   pending_ = 0;
   if (epoch_ >= kEpochs) return;
   const double e1 = EpochStart(epoch_ + 1);
@@ -578,7 +597,8 @@ std::optional<Impact> CollisionMonitor::FirstImpact(int a, int b, double start, 
           take(start, points.front().point, points.front().normal);
           continue;
         }
-        double step = 1e-12 * std::max(1.0, std::abs(start)) + 1e-9 * (end - start);
+        double step = kSearchStartTime * std::max(1.0, std::abs(start)) +
+                      kSearchStartWindow * (end - start);
         bool clear = false;
         for (from = start + step; from < end; from = std::min(end, from + step), step *= 2) {
           const auto d =
@@ -610,7 +630,7 @@ std::optional<Impact> CollisionMonitor::FirstImpact(int a, int b, double start, 
           const Eigen::Vector3d point =
               c.overlapping ? points.front().point
                             : ContactPoint(piece_a, xa, piece_b, xb, c,
-                                           1e-6 * std::max(bodies_[a].radius, bodies_[b].radius));
+                                           kPatchTolerance * std::max(bodies_[a].radius, bodies_[b].radius));
           take(hit->time, point, c.overlapping ? points.front().normal : c.normal);
           break;
         }
@@ -680,7 +700,8 @@ double CollisionMonitor::Approach(int a, int b, double t,
   double most = -kInf;
   for (const auto& p : points) {
     const Eigen::Vector3d va = PointVelocity(a, t, p.point), vb = PointVelocity(b, t, p.point);
-    most = std::max(most, -(vb - va).dot(p.normal) - 1e-12 * (1.0 + va.norm() + vb.norm()));
+    most = std::max(most, -(vb - va).dot(p.normal) -
+                              kApproachRoundOff * (1.0 + va.norm() + vb.norm()));
   }
   return most;
 }
@@ -1041,7 +1062,7 @@ std::vector<int> CollisionMonitor::RestingAxes(int body, const Eigen::Vector3d& 
   for (int k = 0; k < 3; ++k) a[k] = sim_.Rate(m.first_var + physics::kDx + k, t, Side::kLeft);
   const double push = a.dot(n_into);   // acceleration into the partner
   const double rise = -v.dot(n_into);  // speed leaving it
-  if (push <= 0 || rise * rise / (2 * push) >= 1e-6 * bodies_[body].radius) return {};
+  if (push <= 0 || rise * rise / (2 * push) >= kRestingRise * bodies_[body].radius) return {};
   v -= v.dot(n_into) * n_into;
   int axis = 0;
   n_into.cwiseAbs().maxCoeff(&axis);

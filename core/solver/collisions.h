@@ -160,6 +160,7 @@ class CollisionMonitor {
   double separation_;
   double epoch_length_;
   long epoch_ = 0;    // current epoch
+  bool idle_ = false;  // no pair can collide: no windows are checked
   long pending_ = 0;  // collidable bodies not yet computed past its end
   std::vector<BodyInfo> bodies_;
   std::vector<std::vector<int>> bodies_of_component_;

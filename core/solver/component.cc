@@ -31,6 +31,11 @@ constexpr double kTrStiffness = 3.0;
 constexpr double kExplicitStability = 3.25;
 // An implicit step with hρ below this could have been taken explicitly.
 constexpr double kExplicitComfort = 1.0;
+// Implicit step control: h_new = h · clamp(safety · err^(−1/3), min, max)
+// (TR and TR-BDF2 are 2nd order); after a Newton failure the step is cut
+// by kNewtonFailureCut.
+constexpr double kImplicitSafety = 0.9, kImplicitMinFactor = 0.2, kImplicitMaxFactor = 5.0;
+constexpr double kNewtonFailureCut = 0.25;
 // Steps that must argue for the other method before it changes (one noisy
 // estimate must not flip it back and forth); an explicit step size hovering
 // at the stability limit alternates between looking stiff and not, so only
@@ -654,8 +659,10 @@ bool Component::Step() {
       next.err_prev = std::max(att.err, 1e-4);
       double factor;
       if (implicit) {
-        const double grow = rejected ? 1.0 : 5.0;
-        factor = att.err > 0 ? std::clamp(0.9 * std::cbrt(1.0 / att.err), 0.2, grow) : grow;
+        const double grow = rejected ? 1.0 : kImplicitMaxFactor;
+        factor = att.err > 0
+                     ? std::clamp(kImplicitSafety * std::cbrt(1.0 / att.err), kImplicitMinFactor, grow)
+                     : grow;
         // Stiffness gone: h·ρ small enough for explicit steps.
         if (auto_method && att.h_rho * factor < kExplicitComfort) next.stiff_votes = info.stiff_votes + 1;
       } else {
@@ -689,8 +696,9 @@ bool Component::Step() {
     }
     ++counters_.rejected_steps;
     rejected = true;
-    if (!ok) h = h_eff * 0.25;
-    else if (implicit) h = h_eff * std::max(0.2, 0.9 * std::cbrt(1.0 / att.err));
+    if (!ok) h = h_eff * kNewtonFailureCut;
+    else if (implicit)
+      h = h_eff * std::max(kImplicitMinFactor, kImplicitSafety * std::cbrt(1.0 / att.err));
     else h = h_eff * std::max(dp::kMinFactor, dp::kSafety * std::pow(att.err, -dp::kAlpha));
     if (!(h >= h_min)) {
       std::ostringstream msg;
