@@ -313,8 +313,11 @@ TEST(Slave, ProgressCannotExtendACallPastItsOverallDeadline) {
   const auto start = std::chrono::steady_clock::now();
   EXPECT_EQ(Asgard().node()->simulate(n.node, nullptr, nullptr, &e), ASGARD_ERR_TIMEOUT);
   const auto took = std::chrono::steady_clock::now() - start;
+  // It ends (without the overall deadline the progress messages keep it
+  // alive for ever), and not before the deadline; the upper bound leaves
+  // room for a loaded machine.
   EXPECT_GE(took, std::chrono::milliseconds(1900));
-  EXPECT_LT(took, std::chrono::seconds(5));
+  EXPECT_LT(took, std::chrono::seconds(30));
   EXPECT_NE(std::string(e.message).find("did not finish 'simulate' within 2 s"), std::string::npos)
       << e.message;
   EXPECT_EQ(Status(n.node).state, ASGARD_NODE_HUNG);
