@@ -172,9 +172,18 @@ struct ImpactResult {
 // distance when advancement stalls.  Returns nullopt when no contact occurs in
 // [t0, t1].  If the pieces already overlap at t0 it reports t0 with
 // contact.overlapping set.  Deterministic for the same inputs.
+//
+// `graze` (a distance, ≥ 0) trades exactness for speed where the bound
+// crawls: every advancement step is long enough to close `graze` at the
+// bound's speed.  A contact is then still never passed by more than `graze`
+// (a sample that overlaps or comes within separation/2 is bisected back), but
+// a graze that dips below separation/2 and recovers between two samples can
+// go unseen — by at most `graze` of overlap.  Without it (0) the number of
+// steps grows as the bound over the separation, without limit as the
+// separation shrinks.
 std::optional<ImpactResult> TimeOfImpact(const Piece& a, const Motion& ma, const Piece& b,
                                          const Motion& mb, double t0, double t1, double separation,
-                                         DistanceCache* cache = nullptr);
+                                         DistanceCache* cache = nullptr, double graze = 0.0);
 
 // Rigid body state for the impulse computation, world frame.
 struct BodyState {

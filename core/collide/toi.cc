@@ -29,6 +29,12 @@
 // to kBisectRelative of the time scale, stopping early at any sample in
 // (s/2, s] and otherwise returning the safe side.
 //
+// With a graze tolerance g > 0 every step is at least g/B: a window of span
+// T then takes at most B T / g advancement steps, whatever the separation
+// (pairs sliding in contact search below a gap of a few ulps); a sample
+// past the contact is bisected back as above, so only a dip of at most g
+// that recovers between two samples is missed.
+//
 // Termination: every advancement step is at least s/(2B) (or the time
 // resolution), so the number of steps is bounded by 2B(t1 − t0)/s; as a safety
 // net kMaxQueries caps the total.  When the cap is hit the last safe time is
@@ -65,7 +71,7 @@ double ReachRadius(const Piece& piece) {
 
 std::optional<ImpactResult> TimeOfImpact(const Piece& a, const Motion& ma, const Piece& b,
                                          const Motion& mb, double t0, double t1, double separation,
-                                         DistanceCache* cache) {
+                                         DistanceCache* cache, double graze) {
   DistanceCache local;
   DistanceCache* c = cache != nullptr ? cache : &local;
   ImpactResult out;
@@ -105,10 +111,10 @@ std::optional<ImpactResult> TimeOfImpact(const Piece& a, const Motion& ma, const
   while (true) {
     if (out.iterations >= kMaxQueries) return land(t, r);
     const double speed = closing(r);
-    const double step = (r.distance - 0.5 * separation) / speed;
+    const double step = std::max(r.distance - 0.5 * separation, graze) / speed;
     const bool slow = advances >= kMaxAdvances || step < resolution(t);
-    const double t_next =
-        std::min(t1, slow ? t + std::max(r.distance / speed, resolution(t)) : t + step);
+    const double t_next = std::min(
+        t1, slow ? t + std::max(std::max(r.distance, graze) / speed, resolution(t)) : t + step);
     ++advances;
     const DistanceResult rn = query(t_next);
     if (!rn.overlapping && rn.distance <= separation && rn.distance > 0.5 * separation) {

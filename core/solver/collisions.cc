@@ -25,6 +25,10 @@ constexpr double kPatchTolerance = 1e-6;
 // A rise after an impact below this fraction of the radius is resting
 // contact (further bounces would be invisible and infinitely many).
 constexpr double kRestingRise = 1e-6;
+// A graze of a pair's smaller body by at most this fraction of its radius
+// may go unseen by the time-of-impact search (collide::TimeOfImpact): it
+// bounds that search's steps per window whatever the landing gap.
+constexpr double kGraze = 1e-3;
 // Approach speeds within this many roundings of the speeds are no approach.
 constexpr double kApproachRoundOff = 1e-12;
 // The conservative-advancement search starts with a step of this fraction
@@ -69,8 +73,10 @@ void ValueRange(const Cubic& p, double s0, double s1, double& lo, double& hi) {
     const Cubic& p;
     double &lo, &hi;
     ~Widen() {
-      if (p.e > 0) hi += p.e / 16;
-      else lo += p.e / 16;
+      if (p.e > 0)
+        hi += p.e / 16;
+      else
+        lo += p.e / 16;
     }
   } widen{p, lo, hi};
   auto take = [&](double s) {
@@ -477,9 +483,13 @@ bool CollisionMonitor::CheckEpoch() {
       impact = FirstImpact(a, b, start, e1);
       memo = PairMemo{true, start, e1, version_[a], version_[b], impact};
     }
-    // An impact at the very end of the run changes nothing the run computes
-    // (velocities after t1 are never used), so it is not answered.
-    if (impact && impact->t < sys_.t1 && (!best || impact->t < best->t)) best = impact;
+    // Windows are half-open, [e0, e1): an impact exactly at e1 belongs to
+    // the next window, which finds it at its start.  Answered here, its jumps
+    // would not show yet — the bodies' components end at e1 and apply them
+    // only when they next step — so this window would find it again, and
+    // again.  At the run's very end (e1 = t1) it changes nothing the run
+    // computes (velocities after t1 are never used) and is not answered.
+    if (impact && impact->t < e1 && (!best || impact->t < best->t)) best = impact;
   }
   if (!best) return true;
   // Impacts that keep coming at one instant (a body jammed between others,
@@ -510,9 +520,8 @@ double CollisionMonitor::AccelBound(int body, double t0, double t1,
     ForEachSegment(m.first_var + physics::kX + axis, t0, t1,
                    [&](const Cubic& p, double s0, double s1, double h) {
                      for (double s : {s0, s1})
-                       amax =
-                           std::max(amax, std::abs(p.Second(s) / (h * h) - ref[axis]) +
-                                              2 * std::abs(p.e) / (h * h));
+                       amax = std::max(amax, std::abs(p.Second(s) / (h * h) - ref[axis]) +
+                                                 2 * std::abs(p.e) / (h * h));
                    });
     sum2 += amax * amax;
   }
@@ -568,6 +577,7 @@ std::optional<Impact> CollisionMonitor::FirstImpact(int a, int b, double start, 
     return PoseAt(a, t);
   };
   std::optional<Impact> first;
+  const double graze = kGraze * std::min(bodies_[a].radius, bodies_[b].radius);
   const collide::Pose pa0 = PoseAt(a, start), pb0 = PoseAt(b, start);
   auto take = [&](double t, const Eigen::Vector3d& point, const Eigen::Vector3d& normal) {
     if (first && first->t <= t) return;
@@ -597,8 +607,8 @@ std::optional<Impact> CollisionMonitor::FirstImpact(int a, int b, double start, 
           take(start, points.front().point, points.front().normal);
           continue;
         }
-        double step = kSearchStartTime * std::max(1.0, std::abs(start)) +
-                      kSearchStartWindow * (end - start);
+        double step =
+            kSearchStartTime * std::max(1.0, std::abs(start)) + kSearchStartWindow * (end - start);
         bool clear = false;
         for (from = start + step; from < end; from = std::min(end, from + step), step *= 2) {
           const auto d =
@@ -619,19 +629,29 @@ std::optional<Impact> CollisionMonitor::FirstImpact(int a, int b, double start, 
       }
       for (int round = 0; round < 8 && from < end; ++round) {
         ++counters_.narrow_phase_queries;
-        auto hit = collide::TimeOfImpact(piece_a, ma, piece_b, mb, from, end, threshold, &cache);
+        auto hit =
+            collide::TimeOfImpact(piece_a, ma, piece_b, mb, from, end, threshold, &cache, graze);
         if (!hit) break;
         if (first && hit->time >= first->t) break;
         const auto& c = hit->contact;
         const collide::Pose xa = PoseAt(a, hit->time), xb = PoseAt(b, hit->time);
         const auto points = PieceContacts(piece_a, xa, piece_b, xb, c, threshold);
-        if (c.overlapping || Approach(a, b, hit->time, points) > 0) {
+        // An overlap within the separation that does not approach is
+        // touching, not an impact: distance queries disagree on a touch of a
+        // few ulps (with and without a warm cache), and answering it would
+        // change nothing, so the same window would find it again.
+        double hit_gap = kInf;
+        for (const auto& p : points) hit_gap = std::min(hit_gap, p.gap);
+        const bool deep = c.overlapping && (points.empty() || hit_gap < -separation_);
+        if (deep || Approach(a, b, hit->time, points) > 0) {
           // The impulse of an impact acts at the centre of the contact patch.
           const Eigen::Vector3d point =
-              c.overlapping ? points.front().point
-                            : ContactPoint(piece_a, xa, piece_b, xb, c,
-                                           kPatchTolerance * std::max(bodies_[a].radius, bodies_[b].radius));
-          take(hit->time, point, c.overlapping ? points.front().normal : c.normal);
+              c.overlapping && !points.empty()
+                  ? points.front().point
+                  : ContactPoint(piece_a, xa, piece_b, xb, c,
+                                 kPatchTolerance * std::max(bodies_[a].radius, bodies_[b].radius));
+          take(hit->time, point,
+               c.overlapping && !points.empty() ? points.front().normal : c.normal);
           break;
         }
         // Grazing or separating: look further, below the current gap.
@@ -700,8 +720,8 @@ double CollisionMonitor::Approach(int a, int b, double t,
   double most = -kInf;
   for (const auto& p : points) {
     const Eigen::Vector3d va = PointVelocity(a, t, p.point), vb = PointVelocity(b, t, p.point);
-    most = std::max(most, -(vb - va).dot(p.normal) -
-                              kApproachRoundOff * (1.0 + va.norm() + vb.norm()));
+    most = std::max(most,
+                    -(vb - va).dot(p.normal) - kApproachRoundOff * (1.0 + va.norm() + vb.norm()));
   }
   return most;
 }
@@ -1095,9 +1115,12 @@ void CollisionMonitor::AfterTruncate() {
       earliest = std::min(earliest, kept);
       // Impacts after `kept` involving b were computed from data that is gone.
       const double limit = responding_ ? std::max(kept, respond_time_) : kept;
-      for (size_t i = 0; i < impacts_.size();) {
-        const Impact imp = impacts_[i];
-        if (imp.t > limit && Involves(imp, b)) {
+      // impacts_ is sorted by time: only its tail after `limit` can go.
+      auto after = std::upper_bound(impacts_.begin(), impacts_.end(), limit,
+                                    [](double t, const Impact& x) { return t < x.t; });
+      for (size_t i = static_cast<size_t>(after - impacts_.begin()); i < impacts_.size();) {
+        if (Involves(impacts_[i], b)) {
+          const Impact imp = std::move(impacts_[i]);
           impacts_.erase(impacts_.begin() + static_cast<long>(i));
           ++counters_.invalidated_impacts;
           // Both bodies' jumps at the impact are void; the partner's data

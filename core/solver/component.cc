@@ -61,13 +61,13 @@ constexpr double a31 = 3.0 / 40, a32 = 9.0 / 40;
 constexpr double a41 = 44.0 / 45, a42 = -56.0 / 15, a43 = 32.0 / 9;
 constexpr double a51 = 19372.0 / 6561, a52 = -25360.0 / 2187, a53 = 64448.0 / 6561,
                  a54 = -212.0 / 729;
-constexpr double a61 = 9017.0 / 3168, a62 = -355.0 / 33, a63 = 46732.0 / 5247,
-                 a64 = 49.0 / 176, a65 = -5103.0 / 18656;
-constexpr double a71 = 35.0 / 384, a73 = 500.0 / 1113, a74 = 125.0 / 192,
-                 a75 = -2187.0 / 6784, a76 = 11.0 / 84;
+constexpr double a61 = 9017.0 / 3168, a62 = -355.0 / 33, a63 = 46732.0 / 5247, a64 = 49.0 / 176,
+                 a65 = -5103.0 / 18656;
+constexpr double a71 = 35.0 / 384, a73 = 500.0 / 1113, a74 = 125.0 / 192, a75 = -2187.0 / 6784,
+                 a76 = 11.0 / 84;
 // error = 5th − 4th order solution
-constexpr double e1 = 71.0 / 57600, e3 = -71.0 / 16695, e4 = 71.0 / 1920,
-                 e5 = -17253.0 / 339200, e6 = 22.0 / 525, e7 = -1.0 / 40;
+constexpr double e1 = 71.0 / 57600, e3 = -71.0 / 16695, e4 = 71.0 / 1920, e5 = -17253.0 / 339200,
+                 e6 = 22.0 / 525, e7 = -1.0 / 40;
 // bubble of the continuous extension
 constexpr double d1 = -12715105075.0 / 11282082432, d3 = 87487479700.0 / 32700410799,
                  d4 = -10690763975.0 / 1880347072, d5 = 701980252875.0 / 199316789632,
@@ -96,13 +96,13 @@ Counters& Counters::operator+=(const Counters& o) {
 }
 
 struct Component::Mode {
-  std::vector<char> prescribed;     // per local variable
-  expr::Tape f_tape;                // n outputs: ẋ (ODE rows) or g (prescribed rows)
-  expr::Tape fj_tape;               // the same followed by the Jacobian entries
-  std::vector<int> jrow, jcol;      // local (row, col) of each Jacobian entry
-  expr::Tape gdot_tape;             // ∂g/∂t for prescribed rows whose g depends on t only
+  std::vector<char> prescribed;  // per local variable
+  expr::Tape f_tape;             // n outputs: ẋ (ODE rows) or g (prescribed rows)
+  expr::Tape fj_tape;            // the same followed by the Jacobian entries
+  std::vector<int> jrow, jcol;   // local (row, col) of each Jacobian entry
+  expr::Tape gdot_tape;          // ∂g/∂t for prescribed rows whose g depends on t only
   std::vector<int> gdot_rows;
-  std::vector<int> mrow, mcol;      // matrix pattern: n diagonal entries, then jrow/jcol
+  std::vector<int> mrow, mcol;  // matrix pattern: n diagonal entries, then jrow/jcol
   std::vector<double> jvals, mvals, out;
   std::unique_ptr<LinearSolver> solver;
   bool any_prescribed = false;
@@ -116,11 +116,14 @@ struct Component::Attempt {
 };
 
 Component::Component(Simulation& sim, int index, std::vector<int> vars)
-    : sim_(sim), sys_(sim.system()), index_(index), vars_(std::move(vars)),
+    : sim_(sim),
+      sys_(sim.system()),
+      index_(index),
+      vars_(std::move(vars)),
       wave_(static_cast<int>(vars_.size())) {
   const size_t n = vars_.size();
-  for (auto* v : {&x_, &y_, &fy_, &yg_, &fg_, &c_, &r_, &est_, &rate_, &rowsum_, &pv_, &pw_,
-                  &bubble_})
+  for (auto* v :
+       {&x_, &y_, &fy_, &yg_, &fg_, &c_, &r_, &est_, &rate_, &rowsum_, &pv_, &pw_, &bubble_})
     v->assign(n, 0.0);
   for (auto& k : k_) k.assign(n, 0.0);
 }
@@ -222,8 +225,10 @@ Component::Mode& Component::ModeAt(double t) {
   mode_lo_ = -std::numeric_limits<double>::infinity();
   mode_hi_ = std::numeric_limits<double>::infinity();
   auto bound = [&](double b) {
-    if (b <= t) mode_lo_ = std::max(mode_lo_, b);
-    else mode_hi_ = std::min(mode_hi_, b);
+    if (b <= t)
+      mode_lo_ = std::max(mode_lo_, b);
+    else
+      mode_hi_ = std::min(mode_hi_, b);
   };
   for (int v : vars_)
     for (const auto& o : sys_.variables[v].overrides) {
@@ -301,8 +306,8 @@ std::unique_ptr<Component::Mode> Component::BuildMode(const std::string& key, do
   m->mvals.assign(m->mrow.size(), 0.0);
   m->out.assign(all.size(), 0.0);
   m->solver = LinearSolver::Create(n, m->mrow, m->mcol, sim_.options().dense_limit);
-  m->any_prescribed = std::any_of(m->prescribed.begin(), m->prescribed.end(),
-                                  [](char p) { return p != 0; });
+  m->any_prescribed =
+      std::any_of(m->prescribed.begin(), m->prescribed.end(), [](char p) { return p != 0; });
   gdot_.resize(std::max(gdot_.size(), m->gdot_rows.size()));
   return m;
 }
@@ -418,8 +423,7 @@ bool Component::Newton(Mode& m, double t_new, double a, const double* c, double*
   for (int it = 0; it < kNewtonMaxIter; ++it) {
     EvalF(m, t_new, y, fy, Side::kLeft, landing);
     ++counters_.newton_iterations;
-    for (size_t j = 0; j < n; ++j)
-      r_[j] = m.prescribed[j] ? fy[j] - y[j] : c[j] + a * fy[j] - y[j];
+    for (size_t j = 0; j < n; ++j) r_[j] = m.prescribed[j] ? fy[j] - y[j] : c[j] + a * fy[j] - y[j];
     m.solver->Solve(r_.data());
     for (size_t j = 0; j < n; ++j) y[j] += r_[j];
     const double norm = WeightedNorm(r_.data(), x, y);
@@ -441,12 +445,14 @@ bool Component::Newton(Mode& m, double t_new, double a, const double* c, double*
 
 // Rates stored with a sample: ẋ for ODE rows, dg/dt for prescribed rows
 // (exact when g depends on t only, else the secant over the step).
-void Component::Rates(const Mode& m, double t, const double* y, const double* fy,
-                      const double* y0, double h, double* rate, Side side) {
+void Component::Rates(const Mode& m, double t, const double* y, const double* fy, const double* y0,
+                      double h, double* rate, Side side) {
   const size_t n = vars_.size();
   for (size_t j = 0; j < n; ++j) {
-    if (!m.prescribed[j]) rate[j] = fy[j];
-    else rate[j] = h > 0 ? (y[j] - y0[j]) / h : 0.0;
+    if (!m.prescribed[j])
+      rate[j] = fy[j];
+    else
+      rate[j] = h > 0 ? (y[j] - y0[j]) / h : 0.0;
   }
   if (m.gdot_rows.empty()) return;
   double* g = gdot_.data();
@@ -509,10 +515,11 @@ bool Component::TryStep(double h, bool landing, Attempt& out) {
     }
     if (!Newton(m, t + h, a, c_.data(), y_.data(), fy_.data(), landing)) return false;
     for (size_t j = 0; j < n; ++j) {
-      est_[j] = m.prescribed[j] ? 0.0
-                                : 2 * kErrC * h *
-                                      (f[j] / kGamma - fg_[j] / (kGamma * (1 - kGamma)) +
-                                       fy_[j] / (1 - kGamma));
+      est_[j] =
+          m.prescribed[j]
+              ? 0.0
+              : 2 * kErrC * h *
+                    (f[j] / kGamma - fg_[j] / (kGamma * (1 - kGamma)) + fy_[j] / (1 - kGamma));
     }
     m.solver->Solve(est_.data());
     for (size_t j = 0; j < n; ++j)
@@ -554,8 +561,7 @@ bool Component::TryExplicitStep(const Mode& m, double t_end, bool landing, Attem
   double num = 0.0, den = 0.0;
   for (size_t j = 0; j < n; ++j) {
     est_[j] = h * (e1 * k1[j] + e3 * k3[j] + e4 * k4[j] + e5 * k5[j] + e6 * k6[j] + e7 * k7[j]);
-    bubble_[j] =
-        h * (d1 * k1[j] + d3 * k3[j] + d4 * k4[j] + d5 * k5[j] + d6 * k6[j] + d7 * k7[j]);
+    bubble_[j] = h * (d1 * k1[j] + d3 * k3[j] + d4 * k4[j] + d5 * k5[j] + d6 * k6[j] + d7 * k7[j]);
     num += (k7[j] - k6[j]) * (k7[j] - k6[j]);
     den += (y_[j] - yg_[j]) * (y_[j] - yg_[j]);
     rate_[j] = k7[j];
@@ -592,7 +598,6 @@ bool Component::InitialImplicit(double t) {
   return SpectralRadius(m) > kStartStiffRho;
 }
 
-
 namespace {
 struct Plan {
   double t_end;
@@ -622,8 +627,7 @@ bool Component::CheckFinite() {
     failed_variable_ = vars_[j];
     std::ostringstream msg;
     msg << "at t=" << wave_.time(k) << " " << sys_.variables[vars_[j]].name << " = " << x[j]
-        << " with rate " << f[j] << " (component " << index_
-        << "): values must stay finite";
+        << " with rate " << f[j] << " (component " << index_ << "): values must stay finite";
     error_ = msg.str();
     return false;
   }
@@ -639,8 +643,8 @@ bool Component::Step() {
   const SolverOptions& o = sim_.options();
   const double span = sys_.t1 - sys_.t0;
   const double h_max = o.max_step > 0 ? o.max_step : span;
-  const double h_min = std::max(1e-13 * span, 8 * std::numeric_limits<double>::epsilon() *
-                                                  std::abs(t));
+  const double h_min =
+      std::max(1e-13 * span, 8 * std::numeric_limits<double>::epsilon() * std::abs(t));
   const SampleInfo info = wave_.info(k);
   const Mode& mode = ModeAt(t);
   const bool implicit = UseImplicit(mode, info);
@@ -660,11 +664,12 @@ bool Component::Step() {
       double factor;
       if (implicit) {
         const double grow = rejected ? 1.0 : kImplicitMaxFactor;
-        factor = att.err > 0
-                     ? std::clamp(kImplicitSafety * std::cbrt(1.0 / att.err), kImplicitMinFactor, grow)
-                     : grow;
+        factor = att.err > 0 ? std::clamp(kImplicitSafety * std::cbrt(1.0 / att.err),
+                                          kImplicitMinFactor, grow)
+                             : grow;
         // Stiffness gone: h·ρ small enough for explicit steps.
-        if (auto_method && att.h_rho * factor < kExplicitComfort) next.stiff_votes = info.stiff_votes + 1;
+        if (auto_method && att.h_rho * factor < kExplicitComfort)
+          next.stiff_votes = info.stiff_votes + 1;
       } else {
         factor = std::pow(att.err, -dp::kAlpha) * std::pow(info.err_prev, dp::kBeta) * dp::kSafety;
         factor = std::clamp(factor, dp::kMinFactor, rejected ? 1.0 : dp::kMaxFactor);
@@ -696,16 +701,18 @@ bool Component::Step() {
     }
     ++counters_.rejected_steps;
     rejected = true;
-    if (!ok) h = h_eff * kNewtonFailureCut;
+    if (!ok)
+      h = h_eff * kNewtonFailureCut;
     else if (implicit)
       h = h_eff * std::max(kImplicitMinFactor, kImplicitSafety * std::cbrt(1.0 / att.err));
-    else h = h_eff * std::max(dp::kMinFactor, dp::kSafety * std::pow(att.err, -dp::kAlpha));
+    else
+      h = h_eff * std::max(dp::kMinFactor, dp::kSafety * std::pow(att.err, -dp::kAlpha));
     if (!(h >= h_min)) {
       std::ostringstream msg;
       msg << "component " << index_ << " (" << Describe() << ") failed at t=" << t << ": "
-          << (ok ? "error estimate stays above tolerance"
-                 : implicit ? "Newton iteration does not converge"
-                            : "the right-hand side is not finite")
+          << (ok         ? "error estimate stays above tolerance"
+              : implicit ? "Newton iteration does not converge"
+                         : "the right-hand side is not finite")
           << " even with step " << h_eff;
       error_ = msg.str();
       return false;
@@ -838,11 +845,24 @@ std::vector<double> Component::EventTimes() const {
 }
 
 void Component::SetDynamicBreakpoints(const std::vector<double>& upstream) {
-  dynamic_breakpoints_ = EventTimes();
-  dynamic_breakpoints_.insert(dynamic_breakpoints_.end(), upstream.begin(), upstream.end());
-  std::sort(dynamic_breakpoints_.begin(), dynamic_breakpoints_.end());
-  dynamic_breakpoints_.erase(std::unique(dynamic_breakpoints_.begin(), dynamic_breakpoints_.end()),
-                             dynamic_breakpoints_.end());
+  // A long run accumulates thousands of events (every impact is a jump), and
+  // this is called at each: merge sorted runs instead of sorting them all.
+  // Jumps are added in time order (a change at t first forgets what follows
+  // t) and the inherited list is a concatenation of sorted lists, so the
+  // runs are found and merged in linear time in the usual case.
+  std::vector<double> times = EventTimes();
+  times.insert(times.end(), upstream.begin(), upstream.end());
+  constexpr int kMaxRuns = 16;  // beyond this many runs a sort is cheaper
+  int runs = 0;
+  auto run_start = times.begin();
+  while (run_start != times.end() && ++runs <= kMaxRuns) {
+    auto run_end = std::is_sorted_until(run_start, times.end());
+    if (run_start != times.begin()) std::inplace_merge(times.begin(), run_start, run_end);
+    run_start = run_end;
+  }
+  if (run_start != times.end()) std::sort(times.begin(), times.end());
+  times.erase(std::unique(times.begin(), times.end()), times.end());
+  dynamic_breakpoints_ = std::move(times);
 }
 
 std::string Component::Describe() const {

@@ -146,6 +146,64 @@ TEST(TimeOfImpact, ABallSpinningAboutItsCentreDoesNotSlowTheSearch) {
   EXPECT_LT(impact->iterations, 10);
 }
 
+// A spinning box closing slowly on a wall with a landing gap of a few ulps:
+// with a graze tolerance g every step closes at least g at the bound's
+// speed, and nothing before the landing overlaps by more than g.
+TEST(TimeOfImpact, AGrazeToleranceBoundsTheStepsAndTheMissedOverlap) {
+  const Piece wall = Box({0.5, 5, 5});
+  const Piece box = Box({0.5, 0.5, 0.5});
+  const Motion spinning = Spinning({1.3, 0, 0}, {-0.1, 0, 0}, 20.0);
+  const double separation = 1e-12, graze = 1e-3, t1 = 2.0;
+  const auto exact = TimeOfImpact(wall, Static({0, 0, 0}), box, spinning, 0.0, t1, separation);
+  const auto fast =
+      TimeOfImpact(wall, Static({0, 0, 0}), box, spinning, 0.0, t1, separation, nullptr, graze);
+  ASSERT_TRUE(exact.has_value());
+  ASSERT_TRUE(fast.has_value());
+  EXPECT_FALSE(fast->contact.overlapping);
+  // It may pass a first graze the exact search lands at, never land earlier.
+  EXPECT_GE(fast->time, exact->time);
+  // B = v + ω r; every advancement step covers g/B, plus one bisection.
+  const double bound = 0.1 + 20.0 * std::sqrt(0.75);
+  EXPECT_LE(fast->iterations, bound * fast->time / graze + 1 + 200);
+  // Up to the landing, sampled finely: never deeper than the graze.
+  for (double t = 0.0; t < fast->time; t += 1e-5) {
+    const Pose pw = Static({0, 0, 0}).pose(t), pb = spinning.pose(t);
+    if (!Distance(wall, pw, box, pb).overlapping) continue;
+    const auto pen = PenetrationMpr(wall, pw, box, pb);
+    ASSERT_TRUE(pen.has_value());
+    EXPECT_LE(pen->depth, graze) << "t=" << t;
+  }
+}
+
+// A box sliding along a wall face to face, 1e-6 away, with the landing gap
+// below that: the gap never closes, but plain advancement can only step
+// (gap − s/2)/B and stops at its query cap; with a graze tolerance the
+// window takes B T / g steps and finds nothing.
+TEST(TimeOfImpact, SlidingInContactTakesBoundedStepsWithAGrazeTolerance) {
+  const Piece wall = Box({0.5, 5, 5});
+  const Piece box = Box({0.5, 0.5, 0.5});
+  int queries = 0;
+  Motion sliding;
+  sliding.pose = [&queries](double t) {
+    ++queries;
+    return MakePose({1.0 + 1e-6, t, 0.0},
+                    Eigen::AngleAxisd(0.5 * t, Eigen::Vector3d::UnitX()).toRotationMatrix());
+  };
+  sliding.max_linear_speed = 1.0;
+  sliding.max_angular_speed = 0.5;
+  const double separation = 5e-7, graze = 1e-3, t1 = 1.0;
+  const auto exact = TimeOfImpact(wall, Static({0, 0, 0}), box, sliding, 0.0, t1, separation);
+  ASSERT_TRUE(exact.has_value());  // the cap: a possible contact, not a skipped one
+  EXPECT_LT(exact->time, 0.5 * t1);
+  EXPECT_GE(queries, 100000);
+  queries = 0;
+  const auto fast =
+      TimeOfImpact(wall, Static({0, 0, 0}), box, sliding, 0.0, t1, separation, nullptr, graze);
+  EXPECT_FALSE(fast.has_value());
+  const double bound = 1.0 + 0.5 * std::sqrt(0.75);
+  EXPECT_LE(queries, bound * t1 / graze + 2);
+}
+
 TEST(TimeOfImpact, FastSphereDoesNotTunnelThroughAThinPlate) {
   const Piece plate = Box({2, 2, 0.005});
   const Piece ball = Piece::Sphere({0, 0, 0}, 0.1);
