@@ -135,6 +135,9 @@ class Hub {
   bool loaded_ = false;
   json meshes_, poses_;  // the last good scene
   std::string sim_error_;
+  // Graphical edits changed the text since the views last got a `state`
+  // (their parameters' spans and values are stale until the drag ends).
+  bool state_stale_ = false;
   std::set<std::shared_ptr<WsSession>> views_;
   std::mutex mu_;
   std::condition_variable cv_;
@@ -292,6 +295,7 @@ json Hub::Handle(const std::string& method, const json& params,
                  const std::shared_ptr<WsSession>& from) {
   const auto after_text_change = [&](const json& changes) {
     json state = Call("scene_state", json::object());
+    state_stale_ = false;
     text_ = state.value("text", text_);
     bool errors = false;
     for (const auto& d : state["diagnostics"]) errors |= d.value("severity", "") == "error";
@@ -307,6 +311,7 @@ json Hub::Handle(const std::string& method, const json& params,
                            {"param", params.at("param")},
                            {"values", params.at("values")}});
     text_ = r.value("text", text_);
+    state_stale_ = true;
     Broadcast({{"event", "text"},
                {"text", text_},
                {"edits", r["edits"]},
@@ -324,6 +329,12 @@ json Hub::Handle(const std::string& method, const json& params,
   }
   if (method == "simulate") {
     json sim = Resimulate();
+    if (state_stale_) {  // after a drag: fresh parameters for every view
+      state_stale_ = false;
+      Broadcast({{"event", "state"},
+                 {"state", Call("scene_state", json::object())},
+                 {"changes", json::array()}});
+    }
     if (sim.value("ok", false))
       Broadcast({{"event", "scene"}, {"meshes", meshes_}, {"poses", poses_}});
     return sim;

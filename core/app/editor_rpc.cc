@@ -43,18 +43,33 @@ json SceneState(const session::Session& s) {
          {"message", d.message}});
   }
   json parameters = json::array();
-  for (const auto& p : s.Parameters())
-    parameters.push_back({{"element", p.element},
+  for (const auto& p : s.Parameters()) {
+    session::TextEdit where;  // the word's span as an edit: Locate finds both ends
+    where.begin = p.span.begin;
+    where.end = p.span.end;
+    if (p.span.known()) session::Locate(where, s.text());
+    parameters.push_back({{"kind", scene::ElementKindName(p.kind)},
+                          {"element", p.element},
                           {"param", p.param},
                           {"value", p.value},
                           {"editable", p.editable},
                           {"reason", p.reason},
                           {"line", p.span.line},
-                          {"column", p.span.column}});
+                          {"column", p.span.column},
+                          {"end_line", p.span.known() ? where.end_line : 0},
+                          {"end_column", p.span.known() ? where.end_column : 0}});
+  }
+  json elements = json::array();
+  for (const auto& e : s.ElementInfos())
+    elements.push_back({{"kind", scene::ElementKindName(e.kind)},
+                        {"element", e.element},
+                        {"editable", e.editable},
+                        {"reason", e.reason}});
   return {{"ok", true},
           {"text", s.text()},
           {"diagnostics", diagnostics},
           {"parameters", parameters},
+          {"elements", elements},
           {"can_undo", s.CanUndo()},
           {"can_redo", s.CanRedo()}};
 }
@@ -83,7 +98,11 @@ json Meshes(const render::SceneSampler& sampler) {
       }
       pieces.push_back(std::move(piece));
     }
-    bodies.push_back({{"name", b.name}, {"static", b.is_static}, {"pieces", std::move(pieces)}});
+    bodies.push_back({{"name", b.name},
+                      {"static", b.is_static},
+                      {"centroid", Vec(b.centroid)},
+                      {"radius", Round(b.bound_radius)},
+                      {"pieces", std::move(pieces)}});
   }
   return {{"ok", true}, {"bodies", std::move(bodies)}};
 }
@@ -92,7 +111,7 @@ json Poses(const render::SceneSampler& sampler) {
   const std::vector<double> times = sampler.FrameTimes();
   json names = json::array();
   for (const auto& b : sampler.bodies()) names.push_back(b.name);
-  json frames = json::array();
+  json frames = json::array(), forces = json::array();
   for (double t : times) {
     json frame = json::array();
     for (const auto& pose : sampler.Poses(t)) {
@@ -101,6 +120,9 @@ json Poses(const render::SceneSampler& sampler) {
         frame.push_back(Round(v));
     }
     frames.push_back(std::move(frame));
+    json values = json::array();
+    for (const auto& f : sampler.ForceValues(t)) values.push_back(f ? Vec(*f) : json());
+    forces.push_back(std::move(values));
   }
   json rounded = json::array();
   for (double t : times) rounded.push_back(Round(t));
@@ -110,7 +132,8 @@ json Poses(const render::SceneSampler& sampler) {
           {"frame_rate", sampler.frame_rate()},
           {"times", std::move(rounded)},
           {"bodies", std::move(names)},
-          {"poses", std::move(frames)}};
+          {"poses", std::move(frames)},
+          {"forces", std::move(forces)}};
 }
 
 json Refused(const std::string& why) { return {{"ok", false}, {"error", why}}; }

@@ -3,12 +3,16 @@
 // animation, without drawing anything in the slave.
 //
 //   scene_state {}  → {text, diagnostics: [{line, column, end_line, end_column,
-//                      severity, message}], parameters: [{element, param, value,
-//                      editable, reason, line, column}], can_undo, can_redo}
-//   meshes {}       → {bodies: [{name, static, pieces: [{sphere, center, radius} |
+//                      severity, message}], parameters: [{kind, element, param,
+//                      value, editable, reason, line, column, end_line,
+//                      end_column}], elements: [{kind, element, editable,
+//                      reason}], can_undo, can_redo}
+//   meshes {}       → {bodies: [{name, static, centroid (shape coordinates),
+//                      radius, pieces: [{sphere, center, radius} |
 //                      {vertices: [x y z …], triangles: [i j k …]}, color]}]}
 //   poses {}        → {t0, t1, frame_rate, times: [...], bodies: [names],
-//                      poses: [[x y z qx qy qz qw per body] per frame]}
+//                      poses: [[x y z qx qy qz qw per body] per frame],
+//                      forces: [[[fx fy fz] | null per scene force] per frame]}
 //
 // meshes and poses need a successful simulate; before it they answer
 // {ok: false, error}.

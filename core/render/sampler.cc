@@ -375,23 +375,31 @@ std::vector<Segment> SceneSampler::LinkSegments(double t, const std::vector<Pose
   return segs;
 }
 
-std::vector<Segment> SceneSampler::ForceVectors(double t, const std::vector<Pose>& poses) const {
-  const auto& eq = equations_;
-  std::vector<Segment> segs;
-  if (!eval_->tape) return segs;
+std::vector<std::optional<Eigen::Vector3d>> SceneSampler::ForceValues(double t) const {
+  std::vector<std::optional<Eigen::Vector3d>> values(scene_.forces.size());
+  if (!eval_->tape) return values;
   const auto x = StateValues(equations_, simulation_, t, bodies_.size());
   std::vector<double> out(eval_->outputs.size());
   eval_->tape->Evaluate(t, x.data(), out.data(), &eval_->externs);
   for (size_t i = 0; i < scene_.forces.size(); ++i) {
-    const auto& f = scene_.forces[i];
-    const int b = eq.FindBody(f.body);
     const int first = eval_->force_first[i];
-    if (b < 0 || first < 0) continue;
+    if (equations_.FindBody(scene_.forces[i].body) < 0 || first < 0) continue;
+    const Eigen::Vector3d v(out[first], out[first + 1], out[first + 2]);
+    if (v.allFinite()) values[i] = v;
+  }
+  return values;
+}
+
+std::vector<Segment> SceneSampler::ForceVectors(double t, const std::vector<Pose>& poses) const {
+  std::vector<Segment> segs;
+  const auto values = ForceValues(t);
+  for (size_t i = 0; i < scene_.forces.size(); ++i) {
+    if (!values[i]) continue;
+    const auto& f = scene_.forces[i];
+    const int b = equations_.FindBody(f.body);
     const Eigen::Vector3d base =
         f.offset ? poses[b].Apply(ToVec(*f.offset) - bodies_[b].centroid) : poses[b].p;
-    const Eigen::Vector3d v(out[first], out[first + 1], out[first + 2]);
-    if (!v.allFinite()) continue;
-    segs.push_back({base, base + v});
+    segs.push_back({base, base + *values[i]});
   }
   return segs;
 }

@@ -101,6 +101,10 @@ class SceneSampler {
   // scene units (the caller scales it).  Forces whose expressions cannot be
   // evaluated here are left out.
   std::vector<Segment> ForceVectors(double t, const std::vector<Pose>& poses) const;
+  // Each scene force's world vector at time t (mass included for
+  // -gravitational 1), in the order of scene.forces; nullopt where it cannot
+  // be evaluated here.
+  std::vector<std::optional<Eigen::Vector3d>> ForceValues(double t) const;
   // Path of each moving body's centre of mass over `times`.
   std::vector<std::vector<Eigen::Vector3d>> Paths(const std::vector<double>& times) const;
 

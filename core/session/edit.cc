@@ -99,6 +99,19 @@ std::vector<Parameter> Session::Parameters() const {
   return out;
 }
 
+std::vector<ElementInfo> Session::ElementInfos() const {
+  std::vector<ElementInfo> out;
+  for (const ElementRef& e : Elements(scene_)) {
+    ElementInfo info;
+    info.kind = e.kind;
+    info.element = e.key;
+    info.reason = ReadOnlyReason(*e.base, nullptr);
+    info.editable = info.reason.empty();
+    out.push_back(std::move(info));
+  }
+  return out;
+}
+
 EditResult Session::SetParameter(const std::string& element, const std::string& param,
                                  const std::vector<double>& values) {
   EditResult result;

@@ -71,6 +71,15 @@ struct Parameter {
   std::string reason;   // why not, when not
 };
 
+// An element as a graphical view addresses it, and whether its command can be
+// edited in place (an option not written yet is then appended to it).
+struct ElementInfo {
+  scene::ElementKind kind = scene::ElementKind::kBody;
+  std::string element;  // name, "simulator", or kind#index
+  bool editable = false;
+  std::string reason;  // why not, when not
+};
+
 class SessionView {
  public:
   virtual ~SessionView() = default;
@@ -115,6 +124,7 @@ class Session {
   EditResult CreateElement(const std::string& command);
   EditResult DeleteElement(const std::string& element);
   std::vector<Parameter> Parameters() const;
+  std::vector<ElementInfo> ElementInfos() const;
 
   // Simulates incrementally (see above).  False when the solver fails.
   bool Simulate(const std::function<void(double)>& progress = {});

@@ -1,11 +1,12 @@
 // The editing model: text patches, editability, change analysis,
 // incremental simulation, undo, views.
+#include "core/session/session.h"
+
 #include <gtest/gtest.h>
 
 #include <cstring>
+#include <map>
 #include <set>
-
-#include "core/session/session.h"
 
 namespace asgard::session {
 namespace {
@@ -96,6 +97,28 @@ TEST(Editability, LoopsAndExpressionsAreReadOnlyWithTheirReason) {
     }
   }
   EXPECT_TRUE(found);
+}
+
+TEST(Editability, ElementsSayWhetherTheirCommandCanTakeANewOption) {
+  Session s(std::string(kBall) +
+            "foreach i {1 2} { body obj_$i -shape ball }\n"
+            "body f -shape ball\n"
+            "lightsource -type point -pos {0 0 5}\n");
+  std::map<std::string, ElementInfo> by_key;
+  for (const auto& e : s.ElementInfos()) by_key[e.element] = e;
+  ASSERT_EQ(by_key.count("f"), 1u);
+  EXPECT_TRUE(by_key["f"].editable);
+  EXPECT_EQ(by_key["f"].kind, scene::ElementKind::kBody);
+  EXPECT_FALSE(by_key["obj_1"].editable);
+  EXPECT_EQ(by_key["obj_1"].reason, "made in a loop");
+  ASSERT_EQ(by_key.count("lightsource#0"), 1u);
+  EXPECT_TRUE(by_key["lightsource#0"].editable);
+  // f has no -init_rot yet: an editable element takes it (appended), a
+  // read-only one refuses with the same reason.
+  EXPECT_TRUE(s.SetParameter("f", "init_rot", {0, 0, 0.5}).ok);
+  const auto r = s.SetParameter("obj_2", "init_rot", {0, 0, 0.5});
+  EXPECT_FALSE(r.ok);
+  EXPECT_NE(r.error.find("made in a loop"), std::string::npos) << r.error;
 }
 
 Change ChangeOf(const std::vector<ElementChange>& changes, scene::ElementKind kind,

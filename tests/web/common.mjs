@@ -37,3 +37,75 @@ export async function waitFor(f, what, ms = 15000) {
     await sleep(50);
   }
 }
+
+// Headless Chromium (playwright-core from web/node_modules, Debian's
+// /usr/bin/chromium with software WebGL); resolves {context, close}.
+export async function launchBrowser() {
+  const { createRequire } = await import('node:module');
+  const { mkdtempSync, rmSync } = await import('node:fs');
+  const { tmpdir } = await import('node:os');
+  const { join } = await import('node:path');
+  const require = createRequire(join(process.env.ASGARD_WEB_MODULES, 'x.js'));
+  const { chromium } = require('playwright-core');
+  const userData = mkdtempSync(join(tmpdir(), 'asgard-chromium-'));
+  const context = await chromium.launchPersistentContext(userData, {
+    executablePath: '/usr/bin/chromium',
+    headless: true,
+    args: ['--headless', '--no-sandbox', '--disable-gpu', '--disable-background-networking',
+           '--disable-component-update', '--disable-sync', '--no-first-run',
+           '--use-angle=swiftshader', '--enable-unsafe-swiftshader'],
+    viewport: { width: 1200, height: 800 },
+  });
+  const close = async () => { await context.close(); rmSync(userData, { recursive: true, force: true }); };
+  return { context, close };
+}
+
+// Opens the editor in a page and waits until it shows `body`; page errors
+// are collected in the returned list.
+export async function openEditor(context, url, body) {
+  const page = context.pages()[0] ?? await context.newPage();
+  const errors = [];
+  page.on('pageerror', (e) => errors.push(String(e)));
+  await page.goto(url);
+  const ok = await waitFor(() => page.evaluate((b) => window.asgard.ready && window.asgard.graphical.bodyNames().includes(b), body),
+    'the editor shows the scene');
+  return { page, errors, ok };
+}
+
+// The handle `id` of the graphical viewer ({x, y, value, editable, ...}).
+export const handle = (page, id) => page.evaluate((i) => window.asgard.graphical.handleList().find((h) => h.id === i), id);
+
+// Drags a handle by (dx, dy) pixels in steps (Shift held when `shift`), then
+// waits for the re-simulation's new state to reach the page.
+export async function dragHandle(page, id, dx, dy, { shift = false, steps = 8, during = null } = {}) {
+  const h = await handle(page, id);
+  if (!h) throw new Error(`no handle ${id}`);
+  const before = await page.evaluate(() => window.asgard.stateCount);
+  await page.mouse.move(h.x, h.y);
+  await page.mouse.down();
+  if (shift) await page.keyboard.down('Shift');
+  for (let i = 1; i <= steps; ++i) { await page.mouse.move(h.x + (dx * i) / steps, h.y + (dy * i) / steps); await sleep(30); }
+  if (during) await during();
+  await page.mouse.up();
+  if (shift) await page.keyboard.up('Shift');
+  await waitFor(() => page.evaluate((n) => window.asgard.stateCount > n, before), `the state after dragging ${id}`);
+  return h;
+}
+
+// One browser test: `asgard studio` on `scene`, headless Chromium, then
+// body({check, url, context}); failures make the exit status 1.
+export async function browserTest(asgard, scene, what, body) {
+  const { check, failures } = checker();
+  const { url, proc } = await startStudio(asgard, scene);
+  const { context, close } = await launchBrowser();
+  try {
+    await body({ check, url, context });
+  } catch (e) {
+    check(false, `unexpected: ${e.stack || e}`);
+  } finally {
+    await close();
+    proc.kill('SIGTERM');
+  }
+  if (failures.length) { console.log(`${failures.length} failure(s)`); process.exit(1); }
+  console.log(`all ${what} checks passed`);
+}

@@ -4,32 +4,16 @@
 // dragging and re-simulates on release; a new body line, Update, shows the
 // body in both tabs; an error is marked at its line while the old scene stays
 // shown; Undo restores the text.  Screenshots go to OUT_DIR.
-import { createRequire } from 'node:module';
-import { mkdtempSync, readFileSync, rmSync } from 'node:fs';
-import { tmpdir } from 'node:os';
+import { readFileSync } from 'node:fs';
 import { join } from 'node:path';
-import { checker, startStudio, sleep, waitFor } from './common.mjs';
+import { browserTest, sleep, waitFor } from './common.mjs';
 
-const require = createRequire(join(process.env.ASGARD_WEB_MODULES, 'x.js'));
-const { chromium } = require('playwright-core');
 const [asgard, scene, outDir] = process.argv.slice(2);
-const { check, failures } = checker();
-const { url, proc } = await startStudio(asgard, scene);
-const userData = mkdtempSync(join(tmpdir(), 'asgard-chromium-'));
-
-const context = await chromium.launchPersistentContext(userData, {
-  executablePath: '/usr/bin/chromium',
-  headless: true,
-  args: ['--headless', '--no-sandbox', '--disable-gpu', '--disable-background-networking',
-         '--disable-component-update', '--disable-sync', '--no-first-run',
-         '--use-angle=swiftshader', '--enable-unsafe-swiftshader'],
-  viewport: { width: 1200, height: 800 },
-});
 
 const b3Pos = (text) => (/body b3 [^\n]*-init_pos \{([^}]*)\}/.exec(text) || [])[1];
 const viewerTexts = (page) => page.evaluate(() => window.asgard.languageViewers.map((v) => v.text()));
 
-try {
+await browserTest(asgard, scene, 'editor', async ({ check, url, context }) => {
   const a = context.pages()[0] ?? await context.newPage();
   const b = await context.newPage();
   const errors = [];
@@ -123,12 +107,4 @@ try {
   await a.locator('.viewer[data-viewer="1"] button.revert').click();
   check(!(await viewerTexts(a))[1].includes('then reverted'), 'Revert restores the session\'s text');
   check(errors.length === 0, `no script errors in the pages ${errors.join('; ')}`);
-} catch (e) {
-  check(false, `unexpected: ${e.stack || e}`);
-} finally {
-  await context.close();
-  rmSync(userData, { recursive: true, force: true });
-  proc.kill('SIGTERM');
-}
-if (failures.length) { console.log(`${failures.length} failure(s)`); process.exit(1); }
-console.log('all editor checks passed');
+});

@@ -1,13 +1,15 @@
 // The graphical viewer (seed 4.1): the bodies' meshes drawn by three.js from
 // poses streamed once per simulation, so playback, the time slider, rotation
-// and zoom need no server round trip.  Handles (seed 4.2.3): each body's
-// initial position, drawn where the body starts; dragging one changes the
-// `-init_pos` literal through the session while dragging, and re-simulates on
-// release.  A read-only value's handle is grey and says why on hover.
+// and zoom need no server round trip.  Handles (handles.js, seed 4.2.3) edit
+// initial positions, rotations, velocities, constant forces, link ends and
+// lights: dragging one changes its literal through the session while
+// dragging, and re-simulates on release.  Display styles (shaded, lines) and
+// element-type toggles choose what is drawn.
 import * as THREE from 'three';
 import { OrbitControls } from 'three/examples/jsm/controls/OrbitControls.js';
+import { GROUPS, Handle, ParameterIndex, numbers, round, rotationLiteral, rotationOf } from './handles.js';
 
-const round = (v) => Math.round(v * 1000) / 1000;
+const ZERO = [0, 0, 0];
 
 export class GraphicalViewer {
   constructor(canvas, ui) {
@@ -25,13 +27,21 @@ export class GraphicalViewer {
     const sun = new THREE.DirectionalLight(0xffffff, 1.4);
     sun.position.set(30, 50, 40);
     this.scene.add(sun);
-    this.bodies = new Map();   // name → {group, index, static}
-    this.handles = new Map();  // name → {mesh, value, baseValue, basePos, editable, reason}
+    this.bodies = new Map();   // name → {group, meshes, edges, index, static, centroid, radius}
+    this.handles = [];         // Handle (handles.js)
     this.handleGroup = new THREE.Group();
-    this.scene.add(this.handleGroup);
-    this.parameters = [];
+    this.linkLines = new THREE.Group();
+    this.scene.add(this.handleGroup, this.linkLines);
+    this.index = new ParameterIndex([], []);
+    this.simValues = new Map();  // "element.param" → the value the shown motion was simulated with
+    this.scales = { velocity: 1, angvel: 1, force: 1 };
+    this.handleSize = 0.3;
+    this.radius = 10;
+    this.style = 'shaded';
+    this.shown = { bodies: true, handles: true, velocities: true, links: true, forces: true, lights: true };
     this.poses = null;
     this.t = 0;
+    this.frame = 0;
     this.playing = false;
     this.fitted = false;
     this.raycaster = new THREE.Raycaster();
@@ -48,12 +58,14 @@ export class GraphicalViewer {
     this.draw();
   }
 
-  // meshes: {bodies: [{name, static, pieces}]}; poses: {times, bodies, poses}.
+  // meshes: {bodies: [{name, static, centroid, radius, pieces}]};
+  // poses: {times, bodies, poses, forces}.
   setScene(meshes, poses) {
     for (const b of this.bodies.values()) this.scene.remove(b.group);
     this.bodies.clear();
     meshes.bodies.forEach((b) => {
       const group = new THREE.Group();
+      const parts = { meshes: [], edges: [] };
       for (const p of b.pieces) {
         const color = new THREE.Color(p.color[0], p.color[1], p.color[2]);
         const material = new THREE.MeshStandardMaterial({ color, flatShading: true, roughness: 0.7 });
@@ -69,68 +81,287 @@ export class GraphicalViewer {
           geometry.computeVertexNormals();
         }
         const mesh = new THREE.Mesh(geometry, material);
-        group.add(mesh);
-        const edges = new THREE.LineSegments(new THREE.EdgesGeometry(geometry, 20),
+        // Lines style: a sphere's edges are its wireframe's, a hull's its creases.
+        const edges = new THREE.LineSegments(
+          p.sphere ? new THREE.WireframeGeometry(new THREE.SphereGeometry(p.radius, 12, 8).translate(p.center[0], p.center[1], p.center[2]))
+            : new THREE.EdgesGeometry(geometry, 20),
           new THREE.LineBasicMaterial({ color: 0x333333 }));
-        group.add(edges);
+        edges.userData.sphere = p.sphere;
+        edges.userData.color = color;
+        group.add(mesh, edges);
+        parts.meshes.push(mesh);
+        parts.edges.push(edges);
       }
       group.name = b.name;
       this.scene.add(group);
-      this.bodies.set(b.name, { group, index: poses.bodies.indexOf(b.name), static: b.static });
+      this.bodies.set(b.name, {
+        group, ...parts, index: poses.bodies.indexOf(b.name), static: b.static,
+        centroid: b.centroid ? new THREE.Vector3(...b.centroid) : new THREE.Vector3(), radius: b.radius || 1,
+      });
     });
     this.poses = poses;
+    // The initial values this motion was simulated with (handles of moved
+    // bodies are placed relative to them until the next simulation).
+    this.simValues.clear();
+    for (const name of this.bodies.keys())
+      for (const param of ['init_pos', 'init_rot'])
+        this.simValues.set(`${name}.${param}`, numbers(this.index.text(name, param), [3, 4]));
     this.ui.slider.max = String(Math.max(1, poses.times.length - 1));
     if (!this.fitted || this.startsOutOfView()) this.fit();
+    this.applyStyle();
     this.resetHandles();
     this.seek(Math.min(this.t, poses.t1));
   }
 
-  // The session's parameters: which initial positions are editable.
-  setParameters(parameters) {
-    this.parameters = parameters;
+  // The session's parameters and elements (scene_state).
+  setParameters(parameters, elements) {
+    this.index = new ParameterIndex(parameters, elements);
     this.resetHandles();
+    if (this.poses) this.seek(this.t);
+  }
+
+  // Another view (or this one) dragged a handle: the new value.
+  parameterEdited(element, param, values) {
+    const p = this.index.get(element, param);
+    if (p) p.value = values.join(' ');
+    const h = this.handles.find((x) => x.element === element && x.param === param);
+    if (!h || this.dragging === h || !h.editable) return;
+    h.value = values.slice();
+    this.placeHandles();
     this.draw();
   }
 
-  parameterEdited(element, param, values) {
-    if (param !== 'init_pos') return;
-    const h = this.handles.get(element);
-    if (!h || this.dragging === h) return;
-    h.value = values.slice();
-    this.placeHandle(h);
-    this.draw();
+  // --- where things are -------------------------------------------------
+
+  pose0(name) {
+    const b = this.bodies.get(name);
+    if (!b || b.index < 0 || !this.poses) return null;
+    const f = this.poses.poses[0], k = 7 * b.index;
+    return { p: new THREE.Vector3(f[k], f[k + 1], f[k + 2]), q: new THREE.Quaternion(f[k + 3], f[k + 4], f[k + 5], f[k + 6]) };
   }
+
+  // A body's start as its handles' values say (a dragged body moves before
+  // it is simulated again).
+  start(name) {
+    const p0 = this.pose0(name);
+    if (!p0) return null;
+    const pos = this.bodyHandle(name, 'init_pos'), rot = this.bodyHandle(name, 'init_rot');
+    const simPos = this.simValues.get(`${name}.init_pos`) || ZERO;
+    if (pos && pos.value) p0.p.add(new THREE.Vector3(...pos.value).sub(new THREE.Vector3(...simPos)));
+    if (rot && rot.value) {
+      const delta = rotationOf(rot.value).multiply(rotationOf(this.simValues.get(`${name}.init_rot`)).invert());
+      p0.q.premultiply(delta);
+    }
+    return p0;
+  }
+
+  bodyHandle(name, param) { return this.handles.find((h) => h.element === name && h.param === param); }
+
+  // A point in a body's shape coordinates, in the world at the shown time.
+  onBody(name, point) {
+    const b = this.bodies.get(name);
+    if (!b || b.index < 0) return null;
+    return new THREE.Vector3(...point).sub(b.centroid).applyQuaternion(b.group.quaternion).add(b.group.position);
+  }
+
+  // --- handles ------------------------------------------------------------
 
   resetHandles() {
     if (!this.poses) return;
+    // Another view's state while this one drags: rebuilt when the drag ends.
+    if (this.dragging) { this.resetPending = true; return; }
+    this.resetPending = false;
     this.handleGroup.clear();
-    this.handles.clear();
+    this.linkLines.clear();
+    this.handles = [];
+    const add = (spec) => {
+      const h = new Handle(spec, this.handleSize);
+      this.handles.push(h);
+      this.handleGroup.add(h.object);
+      return h;
+    };
+    const ix = this.index;
+    const delta = (h, p, d) => d.value.map((v, k) => round(v + (p.getComponent(k) - d.point.getComponent(k)) / h.scale));
+    const arrowTip = (h, base, stubAxis) => {
+      const v = new THREE.Vector3(...h.value);
+      h.stubbed = v.lengthSq() === 0;
+      // A zero vector's handle waits beside its anchor.
+      return h.stubbed ? base.clone().add(stubAxis.clone().multiplyScalar(this.handleSize * 5)) : base.clone().add(v.multiplyScalar(h.scale));
+    };
     for (const [name, b] of this.bodies) {
       if (b.static || b.index < 0) continue;
-      const p = this.parameters.find((q) => q.element === name && q.param === 'init_pos');
-      const value = p ? p.value.trim().split(/\s+/).map(Number) : null;
-      const editable = !!(p && p.editable && value && value.length === 3 && value.every(Number.isFinite));
-      const mesh = new THREE.Mesh(new THREE.OctahedronGeometry(this.handleSize),
-        new THREE.MeshBasicMaterial({ color: editable ? 0xffa000 : 0x999999, depthTest: false,
-          transparent: true, opacity: 0.55 }));
-      mesh.renderOrder = 10;
-      const f = this.poses.poses[0];
-      const basePos = new THREE.Vector3(f[7 * b.index], f[7 * b.index + 1], f[7 * b.index + 2]);
-      const h = {
-        name, mesh, editable, value: editable ? value : null, baseValue: editable ? value.slice() : null,
-        basePos, reason: p ? (p.reason || '') : 'no -init_pos option',
-      };
-      mesh.userData.handle = h;
-      this.handleGroup.add(mesh);
-      this.handles.set(name, h);
-      this.placeHandle(h);
+      const centre = () => this.start(name).p;
+      add({ kind: 'position', element: name, param: 'init_pos', ...ix.vector(name, 'init_pos'),
+        where: centre, valueFrom: (p, d) => d.value.map((v, k) => round(v + p.getComponent(k) - d.point.getComponent(k))) });
+      const rot = ix.vector(name, 'init_rot', { counts: [3, 4] });
+      add({ kind: 'rotation', element: name, param: 'init_rot', ...rot,
+        anchor: centre,
+        where: () => {
+          const s = this.start(name);
+          return s.p.clone().add(new THREE.Vector3(b.radius + this.handleSize * 3, 0, 0).applyQuaternion(s.q));
+        },
+        valueFrom: (p, d) => {
+          const c = d.anchor, n = this.camera.getWorldDirection(new THREE.Vector3()).negate();
+          const a = d.point.clone().sub(c).projectOnPlane(n), e = p.clone().sub(c).projectOnPlane(n);
+          const angle = Math.atan2(a.clone().cross(e).dot(n), a.dot(e));
+          const q = new THREE.Quaternion().setFromAxisAngle(n, angle).multiply(rotationOf(d.value));
+          return rotationLiteral(q, d.value.length === 4 ? 4 : 3);
+        } });
+      for (const [kind, param, axis] of [['velocity', 'init_dpos', new THREE.Vector3(1, 0, 0)], ['angvel', 'init_drot', new THREE.Vector3(0, 1, 0)]]) {
+        const h = add({ kind, element: name, param, ...ix.vector(name, param), scale: this.scales[kind],
+          anchor: centre, where: () => h.value ? arrowTip(h, centre(), axis) : centre(), valueFrom: (p, d) => delta(h, p, d) });
+      }
+    }
+    ix.ofKind('force').forEach((element) => {
+      const body = ix.text(element, 'body');
+      if (!this.bodies.has(body)) return;
+      const forceIndex = Number(element.split('#')[1]);
+      const offset = ix.get(element, 'offset') ? ix.vector(element, 'offset') : null;
+      // The point of application: the offset's handle, else the centre of mass.
+      const base = () => this.onBody(body, this.bodyHandleOf(element, 'offset').value || this.bodies.get(body).centroid.toArray());
+      const gravitational = ix.text(element, 'gravitational', '0') === '1';
+      const h = add({ kind: 'force', element, param: 'vector', words: ['x', 'y', 'z'], ...ix.vector(element, 'vector', { words: ['x', 'y', 'z'] }),
+        scale: this.scales.force, note: gravitational ? ' (× mass)' : '', anchor: base,
+        where: () => {
+          if (h.editable) return arrowTip(h, base(), new THREE.Vector3(0, -1, 0));
+          // Read-only: the force's value at the shown time, when known.
+          const v = this.forceAt(forceIndex);
+          h.stubbed = !v;
+          return v ? base().add(new THREE.Vector3(...v).multiplyScalar(h.scale)) : base();
+        },
+        valueFrom: (p, d) => delta(h, p, d) });
+      if (offset) add({ kind: 'offset', element, param: 'offset', ...offset, body, where: () => this.onBody(body, this.bodyHandleOf(element, 'offset').value || ZERO),
+        valueFrom: (p, d, ev) => this.onSurface(body, p, d, ev) });
+    });
+    ix.ofKind('link').forEach((element) => {
+      const ends = [];
+      for (const [bodyParam, offsetParam] of [['body1', 'offset1'], ['body2', 'offset2']]) {
+        const body = ix.text(element, bodyParam);
+        if (!this.bodies.has(body)) continue;
+        const h = add({ kind: 'link', element, param: offsetParam, body, ...ix.vector(element, offsetParam),
+          where: () => this.onBody(body, h.value || ZERO), valueFrom: (p, d, ev) => this.onSurface(body, p, d, ev) });
+        ends.push(h);
+      }
+      if (ends.length === 1 && !ix.get(element, 'body2') && !ix.get(element, 'trajectory')) {
+        const point = ix.vector(element, 'vector', { words: ['x', 'y', 'z'] });
+        if (!point.value) point.value = ix.literal(element, ['x', 'y', 'z'], [1]);
+        const h = add({ kind: 'link', element, param: 'vector', words: ['x', 'y', 'z'], id: `${element}.point`, ...point,
+          where: () => (h.value ? new THREE.Vector3(...h.value) : null),
+          valueFrom: (p) => [p.x, p.y, p.z].map((v) => round(v)) });
+        ends.push(h);
+      }
+      if (ends.length === 2) {
+        const line = new THREE.Line(new THREE.BufferGeometry().setFromPoints([new THREE.Vector3(), new THREE.Vector3()]),
+          new THREE.LineBasicMaterial({ color: 0x209020 }));
+        line.userData.ends = ends;
+        this.linkLines.add(line);
+      }
+    });
+    ix.ofKind('lightsource').forEach((element) => {
+      const pos = add({ kind: 'light', element, param: 'pos', ...ix.vector(element, 'pos', { fallback: [0, 0, 10] }),
+        where: () => (pos.value ? new THREE.Vector3(...pos.value) : null),
+        valueFrom: (p) => [p.x, p.y, p.z].map((v) => round(v)) });
+      if (ix.text(element, 'type', 'directional') !== 'directional') return;
+      const length = this.radius * 0.3;
+      const from = () => (pos.value ? new THREE.Vector3(...pos.value) : null);
+      const dir = add({ kind: 'light', element, param: 'dir', ...ix.vector(element, 'dir', { fallback: [0, 0, -1] }),
+        anchor: from,
+        where: () => {
+          const a = from();
+          if (!a || !dir.value) return null;
+          const v = new THREE.Vector3(...dir.value);
+          return v.lengthSq() > 0 ? a.add(v.normalize().multiplyScalar(length)) : a;
+        },
+        valueFrom: (p) => {
+          const v = p.clone().sub(from()).divideScalar(length);
+          return [v.x, v.y, v.z].map((x) => round(x));
+        } });
+    });
+    this.applyVisibility();
+    this.placeHandles();
+  }
+
+  bodyHandleOf(element, param) { return this.handles.find((h) => h.element === element && h.param === param) || {}; }
+
+  // A force's evaluated vector at the shown frame (read-only forces).
+  forceAt(i) {
+    const f = this.poses && this.poses.forces && this.poses.forces[this.frame];
+    return f && f[i] ? f[i] : null;
+  }
+
+  // A link end or force offset dragged: held on the body's surface (the
+  // nearest hit under the pointer; it stays where it was while the pointer
+  // is off the body) unless Shift is held, then in the screen plane.
+  onSurface(body, p, d, ev) {
+    const b = this.bodies.get(body);
+    let world = p;
+    if (!ev.shiftKey) {
+      const hit = this.raycaster.intersectObjects(b.meshes, false)[0];
+      world = hit ? hit.point : d.last || d.point;
+    }
+    d.last = world.clone();
+    const local = world.clone().sub(b.group.position).applyQuaternion(b.group.quaternion.clone().invert()).add(b.centroid);
+    return [local.x, local.y, local.z].map((v) => round(v));
+  }
+
+  placeHandles() {
+    for (const h of this.handles) h.place();
+    for (const line of this.linkLines.children) {
+      const [a, c] = line.userData.ends.map((h) => h.mesh.visible && h.mesh.position);
+      line.visible = !!(a && c);
+      if (line.visible) line.geometry.setFromPoints([a, c]);
     }
   }
 
-  placeHandle(h) {
-    h.mesh.position.copy(h.basePos);
-    if (h.value && h.baseValue)
-      h.mesh.position.add(new THREE.Vector3(h.value[0] - h.baseValue[0], h.value[1] - h.baseValue[1], h.value[2] - h.baseValue[2]));
+  // Arrow scales: the longest of each kind reaches a quarter of the scene.
+  updateScales() {
+    const longest = { velocity: 0, angvel: 0, force: 0 };
+    const ix = this.index;
+    for (const name of this.bodies.keys()) {
+      const v = numbers(ix.text(name, 'init_dpos')), w = numbers(ix.text(name, 'init_drot'));
+      if (v) longest.velocity = Math.max(longest.velocity, Math.hypot(...v));
+      if (w) longest.angvel = Math.max(longest.angvel, Math.hypot(...w));
+    }
+    for (const frame of (this.poses.forces || []).slice(0, 1))
+      for (const f of frame) if (f) longest.force = Math.max(longest.force, Math.hypot(...f));
+    for (const element of ix.ofKind('force')) {
+      const v = ix.literal(element, ['x', 'y', 'z'], [1]);
+      if (v) longest.force = Math.max(longest.force, Math.hypot(...v));
+    }
+    for (const k of Object.keys(longest)) this.scales[k] = (this.radius * 0.25) / (longest[k] > 0 ? longest[k] : 1);
+  }
+
+  // --- display ------------------------------------------------------------
+
+  setStyle(style) {
+    this.style = style;
+    this.applyStyle();
+    this.draw();
+  }
+
+  applyStyle() {
+    const lines = this.style === 'lines';
+    for (const b of this.bodies.values()) {
+      for (const m of b.meshes) m.visible = !lines;
+      for (const e of b.edges) {
+        // Shaded: a hull's creases in grey over its faces; lines: every
+        // piece in its own colour (a sphere as its wireframe).
+        e.visible = lines || !e.userData.sphere;
+        e.material.color.set(lines ? e.userData.color : 0x333333);
+      }
+    }
+  }
+
+  setShown(kind, on) {
+    this.shown[kind] = on;
+    this.applyVisibility();
+    this.draw();
+  }
+
+  applyVisibility() {
+    for (const b of this.bodies.values()) b.group.visible = this.shown.bodies;
+    for (const h of this.handles) h.object.visible = this.shown[GROUPS[h.kind]];
+    this.linkLines.visible = this.shown.links;
   }
 
   // Whether a body's starting position is outside the picture (after an
@@ -157,7 +388,9 @@ export class GraphicalViewer {
     }
     const sphere = box.getBoundingSphere(new THREE.Sphere());
     const r = Math.max(sphere.radius, 1);
-    this.handleSize = r * 0.035;
+    this.radius = r;
+    this.handleSize = r * 0.03;
+    this.updateScales();
     this.controls.target.copy(sphere.center);
     // The framing sphere fits the narrower of the two fields of view.
     const half = (this.camera.fov * Math.PI) / 360;
@@ -169,6 +402,7 @@ export class GraphicalViewer {
     this.camera.updateProjectionMatrix();
     this.controls.update();
     this.fitted = true;
+    this.resetHandles();  // new sizes and arrow scales
   }
 
   // Interpolated poses at time t (linear positions, slerped rotations).
@@ -181,6 +415,7 @@ export class GraphicalViewer {
     while (i + 1 < times.length - 1 && times[i + 1] <= t) ++i;
     const j = Math.min(i + 1, times.length - 1);
     const s = j > i && times[j] > times[i] ? (t - times[i]) / (times[j] - times[i]) : 0;
+    this.frame = s > 0.5 ? j : i;
     const qa = new THREE.Quaternion(), qb = new THREE.Quaternion();
     for (const b of this.bodies.values()) {
       if (b.index < 0) continue;
@@ -190,12 +425,14 @@ export class GraphicalViewer {
       qb.set(c[k + 3], c[k + 4], c[k + 5], c[k + 6]);
       b.group.quaternion.slerpQuaternions(qa, qb, s);
     }
-    // While a handle is dragged the body sits at its new initial position.
-    if (this.dragging && t === times[0]) {
-      const b = this.bodies.get(this.dragging.name);
-      if (b) b.group.position.copy(this.dragging.mesh.position);
+    // While a body's handle is dragged the body sits at its new start.
+    if (this.dragging && t === times[0] && this.bodies.has(this.dragging.element)) {
+      const b = this.bodies.get(this.dragging.element), start = this.start(this.dragging.element);
+      b.group.position.copy(start.p);
+      b.group.quaternion.copy(start.q);
     }
-    this.ui.slider.value = String(i + (s > 0.5 ? 1 : 0));
+    this.placeHandles();
+    this.ui.slider.value = String(this.frame);
     this.ui.clock.textContent = `t = ${t.toFixed(2)}`;
     this.draw();
   }
@@ -230,10 +467,20 @@ export class GraphicalViewer {
     return new THREE.Vector2(((ev.clientX - r.left) / r.width) * 2 - 1, -((ev.clientY - r.top) / r.height) * 2 + 1);
   }
 
+  // The handle under the pointer: the nearest, and of coincident ones the
+  // kind that matters most (a body's position before its velocity).
   pick(ev) {
     this.raycaster.setFromCamera(this.pointer(ev), this.camera);
-    const hit = this.raycaster.intersectObjects(this.handleGroup.children, false)[0];
-    return hit ? hit.object.userData.handle : null;
+    const meshes = this.handles.filter((h) => h.object.visible && h.mesh.visible).map((h) => h.mesh);
+    const hits = this.raycaster.intersectObjects(meshes, false);
+    if (!hits.length) return null;
+    const near = hits.filter((x) => x.distance < hits[0].distance + this.handleSize * 2);
+    near.sort((x, y) => x.object.userData.handle.priority() - y.object.userData.handle.priority());
+    return near[0].object.userData.handle;
+  }
+
+  describe(h) {
+    return h.editable ? `${h.label()} ${h.valueText()}${h.note || ''}` : `${h.label()} is read-only: ${h.reason}`;
   }
 
   setupEvents() {
@@ -245,37 +492,36 @@ export class GraphicalViewer {
     this.canvas.addEventListener('pointerdown', (ev) => {
       const h = this.pick(ev);
       if (!h) return;
-      if (!h.editable) { this.showLabel(`${h.name}.init_pos is read-only: ${h.reason}`); return; }
+      if (!h.editable || !h.value) { this.showLabel(this.describe(h)); return; }
       ev.preventDefault();
       this.controls.enabled = false;
       this.canvas.setPointerCapture(ev.pointerId);
+      if (this.playing) this.play();
       this.dragging = h;
-      this.dragStart = { point: h.mesh.position.clone(), value: h.value.slice() };
+      this.seek(this.poses.times[0]);
+      const point = h.mesh.position.clone();
+      this.dragStart = { point, value: h.value.slice(), anchor: h.anchor ? h.anchor() : null };
       const normal = this.camera.getWorldDirection(new THREE.Vector3());
-      this.plane = new THREE.Plane().setFromNormalAndCoplanarPoint(normal, h.mesh.position);
-      this.grab = null;
+      this.plane = new THREE.Plane().setFromNormalAndCoplanarPoint(normal, point);
       this.raycaster.setFromCamera(this.pointer(ev), this.camera);
       this.grab = this.raycaster.ray.intersectPlane(this.plane, new THREE.Vector3());
-      if (this.playing) this.play();
-      this.seek(this.poses.times[0]);
+      this.showLabel(this.describe(h));
     });
     this.canvas.addEventListener('pointermove', (ev) => {
       if (!this.dragging) {
         const h = this.pick(ev);
         this.canvas.style.cursor = h ? (h.editable ? 'grab' : 'not-allowed') : '';
-        if (h && !h.editable) this.showLabel(`${h.name}.init_pos is read-only: ${h.reason}`);
-        else if (!h) this.showLabel('');
+        this.showLabel(h ? this.describe(h) : '');
         return;
       }
       this.raycaster.setFromCamera(this.pointer(ev), this.camera);
       const p = this.raycaster.ray.intersectPlane(this.plane, new THREE.Vector3());
       if (!p || !this.grab) return;
-      const d = p.sub(this.grab);
       const h = this.dragging;
-      h.value = this.dragStart.value.map((v, k) => round(v + d.getComponent(k)));
-      this.placeHandle(h);
+      const at = this.dragStart.point.clone().add(p.sub(this.grab));
+      h.value = h.valueFrom(at, this.dragStart, ev);
       this.seek(this.poses.times[0]);
-      this.showLabel(`${h.name} -init_pos {${h.value.join(' ')}}`);
+      this.showLabel(this.describe(h));
       this.sendDrag(h);
     });
     const end = async (ev) => {
@@ -285,6 +531,7 @@ export class GraphicalViewer {
       this.controls.enabled = true;
       try { this.canvas.releasePointerCapture(ev.pointerId); } catch { /* released */ }
       await this.flushDrag(h);
+      if (this.resetPending) this.resetHandles();
       this.showLabel('');
       this.ui.dragEnd();
     };
@@ -294,19 +541,19 @@ export class GraphicalViewer {
 
   // One edit in flight at a time; the latest value wins.
   sendDrag(h) {
-    this.latest = h.value.slice();
+    this.latest = { h, values: h.value.slice() };
     if (this.inFlight) return;
-    const values = this.latest;
+    const { values } = this.latest;
     this.latest = null;
-    this.inFlight = this.ui.drag(h.name, 'init_pos', values).catch(() => {}).then(() => {
+    this.inFlight = this.ui.drag(h.element, h.param, values).catch((e) => this.showLabel(String(e.message || e))).then(() => {
       this.inFlight = null;
-      if (this.latest) this.sendDrag({ ...h, value: this.latest });
+      if (this.latest) this.sendDrag(this.latest.h);
     });
   }
 
-  async flushDrag(h) {
+  async flushDrag() {
     while (this.inFlight) await this.inFlight;
-    if (this.latest) { this.sendDrag({ ...h, value: this.latest }); while (this.inFlight) await this.inFlight; }
+    if (this.latest) { this.sendDrag(this.latest.h); while (this.inFlight) await this.inFlight; }
   }
 
   showLabel(text) {
@@ -316,17 +563,33 @@ export class GraphicalViewer {
 
   // Test and tool hooks.
   bodyNames() { return [...this.bodies.keys()]; }
-  handleScreenPos(name) {
-    const h = this.handles.get(name);
-    if (!h) return null;
-    const v = h.mesh.position.clone().project(this.camera);
+  toScreen(v) {
+    const p = v.clone().project(this.camera);
     const r = this.canvas.getBoundingClientRect();
-    return { x: r.left + ((v.x + 1) / 2) * r.width, y: r.top + ((1 - v.y) / 2) * r.height };
+    return { x: r.left + ((p.x + 1) / 2) * r.width, y: r.top + ((1 - p.y) / 2) * r.height };
+  }
+  handleScreenPos(name) {
+    const h = this.bodyHandle(name, 'init_pos');
+    return h ? this.toScreen(h.mesh.position) : null;
+  }
+  // Every handle: {id, kind, element, param, value, editable, reason, shown, x, y}.
+  handleList() {
+    return this.handles.map((h) => ({
+      id: h.id, kind: h.kind, element: h.element, param: h.param, value: h.value, editable: h.editable,
+      reason: h.reason, shown: h.object.visible && h.mesh.visible, arrow: !!(h.arrow && h.arrow.visible),
+      ...this.toScreen(h.mesh.position),
+    }));
   }
   bodyPosition(name, frame = 0) {
     const b = this.bodies.get(name);
     if (!b || !this.poses) return null;
     const f = this.poses.poses[frame], k = 7 * b.index;
     return [f[k], f[k + 1], f[k + 2]];
+  }
+  bodyQuaternion(name, frame = 0) {
+    const b = this.bodies.get(name);
+    if (!b || !this.poses) return null;
+    const f = this.poses.poses[frame], k = 7 * b.index;
+    return [f[k + 3], f[k + 4], f[k + 5], f[k + 6]];
   }
 }

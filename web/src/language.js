@@ -2,11 +2,14 @@
 // Save and Revert.  Text changes from the session (another viewer's Update, a
 // handle dragged) arrive as ordinary editor transactions — the smallest
 // replacement — so the editor's own undo sees them.  Errors are marked at
-// their spans and listed under the text.
+// their spans and listed under the text.  Graphically editable literals are
+// highlighted, read-only ones say why on hover, long point lists are elided
+// (literals.js).
 import { EditorView, basicSetup } from 'codemirror';
 import { StateEffect, StateField } from '@codemirror/state';
 import { Decoration } from '@codemirror/view';
 import { setDiagnostics } from '@codemirror/lint';
+import { literalTooltips, literalsField, setLiterals } from './literals.js';
 
 const setErrorLines = StateEffect.define();
 const errorLines = StateField.define({
@@ -22,6 +25,9 @@ const errorLines = StateField.define({
 export class LanguageViewer {
   constructor(parent, index, actions) {
     this.session = '';
+    this.parameters = [];
+    this.expanded = new Set();  // element.param of elided lists shown in full
+    this.literals = literalsField(this);
     const root = document.createElement('div');
     root.className = 'viewer';
     root.dataset.viewer = String(index);
@@ -42,7 +48,7 @@ export class LanguageViewer {
     this.errors = document.createElement('div');
     this.errors.className = 'errors';
     parent.appendChild(root);
-    this.view = new EditorView({ doc: '', extensions: [basicSetup, errorLines], parent: root });
+    this.view = new EditorView({ doc: '', extensions: [basicSetup, EditorView.lineWrapping, errorLines, this.literals, literalTooltips(this.literals)], parent: root });
     root.appendChild(this.errors);
     this.root = root;
   }
@@ -50,8 +56,8 @@ export class LanguageViewer {
   text() { return this.view.state.doc.toString(); }
 
   // Adopt the session's text (as a minimal change) and, when given, its
-  // diagnostics.
-  showSession(text, diagnostics) {
+  // diagnostics and parameters.
+  showSession(text, diagnostics, parameters) {
     this.session = text;
     const old = this.text();
     if (old !== text) {
@@ -66,9 +72,45 @@ export class LanguageViewer {
       });
     }
     if (diagnostics) this.mark(diagnostics);
+    if (parameters) {
+      this.parameters = parameters;
+      this.markLiterals();
+    }
   }
 
-  revert() { this.showSession(this.session, null); }
+  // Highlights and elisions for the session's parameters; only while the
+  // text is the session's (their spans are the session text's).
+  markLiterals() {
+    if (this.text() !== this.session) return;
+    this.view.dispatch({ effects: setLiterals.of(this.parameters) });
+  }
+
+  toggleElided(key) {
+    if (this.expanded.has(key)) this.expanded.delete(key);
+    else this.expanded.add(key);
+    this.markLiterals();
+  }
+
+  // Test hooks: the highlighted literals and the elided lists.
+  literalMarks() {
+    const out = [];
+    this.view.state.field(this.literals).marks.between(0, this.view.state.doc.length, (from, to, d) => {
+      if (d.spec.info) out.push({ from, to, text: this.view.state.doc.sliceString(from, to), class: d.spec.class, info: d.spec.info });
+    });
+    return out;
+  }
+  elidedRanges() {
+    const out = [];
+    this.view.state.field(this.literals).elided.between(0, this.view.state.doc.length, (from, to, d) => {
+      out.push({ from, to, key: d.spec.widget.key });
+    });
+    return out;
+  }
+
+  revert() {
+    this.showSession(this.session, null);
+    this.markLiterals();
+  }
 
   mark(diagnostics) {
     const doc = this.view.state.doc;

@@ -24,9 +24,11 @@ window.asgard = app;
 
 function applyState(state) {
   app.state = state;
+  app.stateCount = (app.stateCount || 0) + 1;
   app.text = state.text;
-  for (const v of app.languageViewers) v.showSession(state.text, state.diagnostics);
-  app.graphical.setParameters(state.parameters);
+  for (const v of app.languageViewers) v.showSession(state.text, state.diagnostics, state.parameters);
+  app.graphical.setParameters(state.parameters, state.elements);
+  showSimulatorOptions(state);
   const errors = state.diagnostics.filter((d) => d.severity === 'error');
   app.setStatus(errors.length ? `${errors.length} error(s): the last good scene is shown` : '');
 }
@@ -40,12 +42,13 @@ function addLanguageViewer() {
       app.setStatus('saved');
     },
   });
-  if (app.state) v.showSession(app.state.text, app.state.diagnostics);
+  if (app.state) v.showSession(app.state.text, app.state.diagnostics, app.state.parameters);
   app.languageViewers.push(v);
   return v;
 }
 
 async function run(method, params) {
+  app.busy = (app.busy || 0) + 1;
   try {
     const r = await conn.call(method, params);
     if (r && r.state) applyState(r.state);
@@ -54,7 +57,60 @@ async function run(method, params) {
   } catch (e) {
     app.setStatus(String(e.message || e));
     throw e;
+  } finally {
+    app.busy -= 1;
   }
+}
+
+// The control panel's time range and tolerance: the `simulator` command's
+// -start, -finish and -rtol, edited through the session like a handle.
+const SIMULATOR = [['start', 'sim-start', '0'], ['finish', 'sim-finish', '10'], ['rtol', 'sim-rtol', '']];
+
+function showSimulatorOptions(state) {
+  const sim = state.elements.find((e) => e.element === 'simulator');
+  for (const [param, id, fallback] of SIMULATOR) {
+    const field = document.getElementById(id);
+    const p = state.parameters.find((q) => q.element === 'simulator' && q.param === param);
+    if (document.activeElement !== field) field.value = p ? p.value : fallback;
+    const reason = p && !p.editable ? p.reason : sim && !sim.editable ? sim.reason : '';
+    field.disabled = !!reason;
+    field.title = reason ? `simulator -${param} is read-only: ${reason}` : `simulator -${param}`;
+  }
+}
+
+async function editSimulator() {
+  const values = {};
+  for (const [param, id] of SIMULATOR) {
+    const text = document.getElementById(id).value.trim();
+    if (text === '') continue;
+    const v = Number(text);
+    if (!Number.isFinite(v)) { app.setStatus(`simulator -${param}: '${text}' is not a number`); return; }
+    values[param] = v;
+  }
+  if (values.finish !== undefined && values.finish <= (values.start ?? 0)) {
+    app.setStatus('simulator: -finish must be after -start');
+    return;
+  }
+  if (values.rtol !== undefined && !(values.rtol > 0)) { app.setStatus('simulator -rtol must be positive'); return; }
+  app.setStatus('');
+  const params = app.state.parameters;
+  // Options not written stay unwritten while the field shows their default.
+  const changed = Object.entries(values).filter(([param, v]) => {
+    const p = params.find((q) => q.element === 'simulator' && q.param === param);
+    const fallback = SIMULATOR.find(([name]) => name === param)[2];
+    return p ? Number(p.value) !== v : fallback === '' || Number(fallback) !== v;
+  });
+  if (!changed.length) return;
+  try {
+    if (!app.state.elements.some((e) => e.element === 'simulator')) {
+      // No simulator command yet: one at the top of the text.
+      const command = `simulator ${Object.entries(values).map(([k, v]) => `-${k} ${v}`).join(' ')}\n`;
+      await run('update', { text: command + app.text });
+      return;
+    }
+    for (const [param, v] of changed) await conn.call('set_parameter', { element: 'simulator', param, values: [v] });
+    await run('simulate', {});
+  } catch { /* run() or the status says why */ }
 }
 
 async function main() {
@@ -91,6 +147,11 @@ async function main() {
   document.getElementById('undo').onclick = () => run('undo', {});
   document.getElementById('redo').onclick = () => run('redo', {});
   document.getElementById('add-viewer').onclick = () => addLanguageViewer();
+  for (const [, id] of SIMULATOR)
+    document.getElementById(id).addEventListener('change', () => editSimulator());
+  document.getElementById('style').onchange = (ev) => app.graphical.setStyle(ev.target.value);
+  for (const box of document.querySelectorAll('#toggles input'))
+    box.onchange = () => app.graphical.setShown(box.dataset.kind, box.checked);
 
   await conn.open();
   const opened = await conn.call('open', {});

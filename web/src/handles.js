@@ -1,0 +1,160 @@
+// Handles (seed 4.1.2–4.1.8, 4.2.3): every spatial value of the scene that a
+// graphical viewer can show and edit, built from the session's parameters.
+//
+//   kind       element  param     drawn as                         drag
+//   position   body     init_pos  octahedron at the start          moves in the screen plane
+//   rotation   body     init_rot  knob on a spoke from the body    turns the body about the view axis
+//   velocity   body     init_dpos arrow from the centre of mass    tip moves in the screen plane
+//   angvel     body     init_drot arrow through the centre of mass tip moves in the screen plane
+//   force      force#i  vector    arrow from the point of application (constant forces)
+//   offset     force#i  offset    ball on the body                 held on the body's surface
+//   link ends  link#i   offset1/2 ball on each body, line between  held on the surface (Shift: free)
+//              link#i   vector    ball at an object-to-point link's fixed point
+//   light      light    pos, dir  ball at the light, arrow along a directional light's direction
+//
+// A handle whose value is not a literal the session can rewrite (an
+// expression, a command made in a loop …) is read-only: drawn grey and
+// hollow, its reason shown on hover.  Values edit through the session's
+// set_parameter exactly like the text would (one literal rewritten).
+import * as THREE from 'three';
+
+export const round = (v, digits = 1000) => Math.round(v * digits) / digits;
+const vec = (a) => new THREE.Vector3(a[0], a[1], a[2]);
+
+// Numbers of a literal's text, or null when it is not `count` numbers.
+export function numbers(text, counts = [3]) {
+  if (typeof text !== 'string') return null;
+  const parts = text.replace(/[{}]/g, ' ').trim().split(/\s+/).filter((s) => s.length);
+  const v = parts.map(Number);
+  return counts.includes(v.length) && v.every(Number.isFinite) ? v : null;
+}
+
+// -init_rot: a rotation vector (axis × angle) or a unit quaternion {w x y z}.
+export function rotationOf(value) {
+  if (!value) return new THREE.Quaternion();
+  if (value.length === 4) return new THREE.Quaternion(value[1], value[2], value[3], value[0]).normalize();
+  const axis = vec(value);
+  const angle = axis.length();
+  return angle > 0 ? new THREE.Quaternion().setFromAxisAngle(axis.divideScalar(angle), angle) : new THREE.Quaternion();
+}
+
+// The rotation written the way the literal was (3 numbers or 4).
+export function rotationLiteral(q, count) {
+  const s = q.w < 0 ? -1 : 1;
+  const w = s * q.w, x = s * q.x, y = s * q.y, z = s * q.z;
+  if (count === 4) return [w, x, y, z].map((v) => round(v, 10000));
+  const n = Math.hypot(x, y, z);
+  const angle = 2 * Math.atan2(n, w);
+  const k = n > 1e-12 ? angle / n : 2;
+  return [x * k, y * k, z * k].map((v) => round(v, 10000));
+}
+
+const COLORS = {
+  position: 0xffa000, rotation: 0xc040c0, velocity: 0x2070ff, angvel: 0x10a0a0,
+  force: 0xe03030, offset: 0xe03030, link: 0x209020, light: 0xd0a000,
+};
+// Which toggle shows a kind (the viewer's element-type check boxes).
+export const GROUPS = {
+  position: 'handles', rotation: 'handles', velocity: 'velocities', angvel: 'velocities',
+  force: 'forces', offset: 'forces', link: 'links', light: 'lights',
+};
+// Coincident handles: the lower wins the pick.
+const PRIORITY = { position: 0, rotation: 1, offset: 2, link: 2, light: 2, force: 3, velocity: 4, angvel: 5 };
+
+// The session's view of one element's parameters.
+export class ParameterIndex {
+  constructor(parameters, elements) {
+    this.params = new Map();
+    for (const p of parameters || []) this.params.set(`${p.element}\u0000${p.param}`, p);
+    this.elements = new Map((elements || []).map((e) => [e.element, e]));
+    this.parameters = parameters || [];
+  }
+  get(element, param) { return this.params.get(`${element}\u0000${param}`) || null; }
+  text(element, param, fallback = '') { const p = this.get(element, param); return p ? p.value : fallback; }
+  ofKind(kind) {
+    return [...this.elements.values()].filter((e) => e.kind === kind).map((e) => e.element);
+  }
+  // {value, editable, reason} of a vector parameter: `words` are the option
+  // words it spans (one, or -x -y -z), `counts` the lengths it may have.
+  vector(element, param, { words = [param], counts = [3], fallback = [0, 0, 0] } = {}) {
+    const e = this.elements.get(element);
+    if (!e) return { value: null, editable: false, reason: 'not in the scene' };
+    if (!e.editable) return { value: this.literal(element, words, counts) || fallback, editable: false, reason: e.reason };
+    if (words.length > 1) {
+      const value = [];
+      for (const w of words) {
+        const p = this.get(element, w);
+        const n = p ? numbers(p.value, [1]) : [0];
+        if (p && !p.editable) return { value: null, editable: false, reason: `-${w}: ${p.reason}` };
+        if (!n) return { value: null, editable: false, reason: `-${w} is not a number` };
+        value.push(n[0]);
+      }
+      return { value, editable: true, reason: '' };
+    }
+    const p = this.get(element, param);
+    if (!p) return { value: fallback.slice(), editable: true, reason: '' };  // appended when edited
+    if (!p.editable) return { value: numbers(p.value, counts), editable: false, reason: p.reason };
+    const value = numbers(p.value, counts);
+    if (!value) return { value: null, editable: false, reason: `not ${counts.join(' or ')} numbers` };
+    return { value, editable: true, reason: '' };
+  }
+  literal(element, words, counts) {
+    if (words.length === 1) return numbers(this.text(element, words[0]), counts);
+    const v = words.map((w) => numbers(this.text(element, w, '0'), [1]));
+    return v.every((x) => x) ? v.map((x) => x[0]) : null;
+  }
+}
+
+// One handle.  `spec` gives kind, element, param, words, the value and its
+// editability, and three functions of the viewer:
+//   anchor()        the world point an arrow starts from (null: no arrow)
+//   where()         the handle's world position for the current value
+//   valueFrom(p, d) the value for a dragged handle at world point p
+//                   (d: the drag's start {value, point})
+export class Handle {
+  constructor(spec, size) {
+    Object.assign(this, spec);
+    this.id = spec.id || `${spec.element}.${spec.param}`;
+    const color = spec.editable ? COLORS[spec.kind] : 0x606060;
+    const geometry = spec.kind === 'position' ? new THREE.OctahedronGeometry(size * 1.25)
+      : new THREE.SphereGeometry(size * (spec.kind === 'rotation' ? 0.9 : 0.8), 14, 10);
+    this.mesh = new THREE.Mesh(geometry, new THREE.MeshBasicMaterial({
+      color, depthTest: false, transparent: true, opacity: spec.editable ? 0.8 : 0.9, wireframe: !spec.editable,
+    }));
+    this.mesh.renderOrder = 10;
+    this.mesh.userData.handle = this;
+    this.object = new THREE.Group();
+    this.object.add(this.mesh);
+    if (spec.anchor) {
+      // The arrow from the anchor to the handle (a spoke for a rotation).
+      this.arrow = new THREE.ArrowHelper(new THREE.Vector3(1, 0, 0), new THREE.Vector3(), 1, color, size * 2, size * 1.2);
+      this.arrow.line.material.depthTest = false;
+      this.arrow.cone.material.depthTest = false;
+      this.arrow.renderOrder = 9;
+      this.object.add(this.arrow);
+    }
+    this.size = size;
+  }
+  // The name of the value as the text writes it.
+  label() {
+    const words = this.words && this.words.length > 1 ? this.words.map((w) => `-${w}`).join(' ') : `-${this.param}`;
+    return `${this.element} ${words}`;
+  }
+  valueText() { return this.value ? `{${this.value.map((v) => round(v, 10000)).join(' ')}}` : '(not a literal)'; }
+  place() {
+    const p = this.where();
+    this.mesh.visible = !!p;
+    if (p) this.mesh.position.copy(p);
+    if (!this.arrow) return;
+    const a = this.anchor();
+    const d = a && p ? p.clone().sub(a) : null;
+    const length = d ? d.length() : 0;
+    this.arrow.visible = !!a && length > this.size * 0.5 && !this.stubbed;
+    if (this.arrow.visible) {
+      this.arrow.position.copy(a);
+      this.arrow.setDirection(d.divideScalar(length));
+      this.arrow.setLength(length, Math.min(this.size * 2, length * 0.4), Math.min(this.size * 1.2, length * 0.3));
+    }
+  }
+  priority() { return PRIORITY[this.kind] ?? 9; }
+}
