@@ -17,6 +17,7 @@ constexpr double kHopHeight = 1e-3;       // of the body's size: resting hops ri
 constexpr double kMarginRelative = 0.02;  // contact points kept up to this gap (of size)
 constexpr int kSleepEvents = 12;          // resting events at rest in a row before sleep
 constexpr int kSweeps = 200;              // contact solver sweeps at most
+constexpr int kJamEvents = 50;            // impacts at one instant before they count as a jam
 // The landing gap: at least this fraction of the smallest body's radius
 // (double precision cannot place bodies closer meaningfully).
 constexpr double kMinSeparation = 1e-8;
@@ -493,7 +494,7 @@ bool CollisionMonitor::CheckEpoch() {
   }
   if (!best) return true;
   // Impacts that keep coming at one instant (a body jammed between others,
-  // or positions too loose for the contacts to separate): past 50 they are
+  // or positions too loose for the contacts to separate): past kJamEvents they are
   // made perfectly inelastic, past 1000 the run stops with a report.
   same_instant_ = best->t == last_impact_time_ ? same_instant_ + 1 : 0;
   last_impact_time_ = best->t;
@@ -863,7 +864,9 @@ void CollisionMonitor::Respond(const Impact& impact) {
   const bool ball_on_immovable =
       pc.points.size() == 1 && ((balls_only(impact.a) && !Movable(impact.b, t)) ||
                                 (balls_only(impact.b) && !Movable(impact.a, t)));
-  if (approach <= slow_speed && !ball_on_immovable && same_instant_ <= 50) {
+  // Impacts that keep coming at one instant (a jam) are solved together too,
+  // whatever their speed: one pair at a time only passes the push around.
+  if ((approach <= slow_speed || same_instant_ > kJamEvents) && !ball_on_immovable) {
     RespondResting(impact);
     return;
   }
@@ -875,7 +878,7 @@ void CollisionMonitor::Respond(const Impact& impact) {
     movable[s] = Movable(ids[s], t);
     state[s] = StateAt(ids[s], t, movable[s]);
   }
-  const double e = same_instant_ > 50
+  const double e = same_instant_ > kJamEvents
                        ? 0.0
                        : sys_.bodies[impact.a].restitution * sys_.bodies[impact.b].restitution;
   const double mu = std::sqrt(sys_.bodies[impact.a].friction * sys_.bodies[impact.b].friction);
@@ -981,22 +984,34 @@ void CollisionMonitor::RespondResting(const Impact& impact) {
       pairs.push_back(std::move(pc));
     }
   }
-  // Overlaps are pushed apart first (positions), pairs in order.
+  // Overlaps are pushed apart first (positions): Gauss–Seidel sweeps over
+  // the overlapping pairs on their gaps as the shifts so far change them, so
+  // that a stack pressed into the floor rises as a whole (one pass, pair by
+  // pair, would push each body back into the one below, at every event).
   std::map<int, Eigen::Vector3d> shift;
-  for (const PairContact& pc : pairs) {
-    if (!(pc.min_gap < -separation_)) continue;
-    const collide::BodyState& sa = states[static_cast<size_t>(index[pc.a])];
-    const collide::BodyState& sb = states[static_cast<size_t>(index[pc.b])];
-    const double wa = sa.inv_mass, wb = sb.inv_mass;
-    if (!(wa + wb > 0)) continue;
-    const Eigen::Vector3d n = pc.points.front().normal;
-    const double depth = separation_ - pc.min_gap;
-    if (wa > 0)
-      shift.try_emplace(pc.a, Eigen::Vector3d::Zero()).first->second -= depth * wa / (wa + wb) * n;
-    if (wb > 0)
-      shift.try_emplace(pc.b, Eigen::Vector3d::Zero()).first->second += depth * wb / (wa + wb) * n;
-    ++counters_.overlaps_resolved;
+  auto shift_of = [&](int body) -> Eigen::Vector3d& {
+    return shift.try_emplace(body, Eigen::Vector3d::Zero()).first->second;
+  };
+  std::set<std::pair<int, int>> pushed_pairs;
+  for (int sweep = 0; sweep < kSweeps; ++sweep) {
+    bool moved = false;
+    for (const PairContact& pc : pairs) {
+      if (pc.points.empty()) continue;
+      const double wa = states[static_cast<size_t>(index[pc.a])].inv_mass;
+      const double wb = states[static_cast<size_t>(index[pc.b])].inv_mass;
+      if (!(wa + wb > 0)) continue;
+      const Eigen::Vector3d n = pc.points.front().normal;
+      const double gap = pc.min_gap + n.dot(shift_of(pc.b) - shift_of(pc.a));
+      if (!(gap < -separation_)) continue;
+      const double depth = separation_ - gap;
+      if (wa > 0) shift_of(pc.a) -= depth * wa / (wa + wb) * n;
+      if (wb > 0) shift_of(pc.b) += depth * wb / (wa + wb) * n;
+      pushed_pairs.insert({pc.a, pc.b});
+      moved = true;
+    }
+    if (!moved) break;
   }
+  counters_.overlaps_resolved += static_cast<long>(pushed_pairs.size());
   std::map<int, Eigen::Vector3d> acc;
   for (const auto& [body, row] : index)
     acc[body] = states[static_cast<size_t>(row)].inv_mass > 0 || Prescribed(body, t)
