@@ -603,8 +603,16 @@ std::optional<Impact> CollisionMonitor::FirstImpact(int a, int b, double start, 
         // overlap).  Otherwise look on from the moment they are clear.
         const auto points = PieceContacts(piece_a, pa0, piece_b, pb0, d0, separation_);
         double min_gap = kInf;
-        for (const auto& p : points) min_gap = std::min(min_gap, p.gap);
-        if (min_gap < -separation_ || Approach(a, b, start, points) > 0) {
+        // Only touching points (within the separation) must not approach;
+        // a point of the patch further away may close on its gap (the
+        // resting solve lets it, speculatively), and the search below finds
+        // it landing.
+        std::vector<collide::ContactPoint> touching;
+        for (const auto& p : points) {
+          min_gap = std::min(min_gap, p.gap);
+          if (p.gap <= separation_) touching.push_back(p);
+        }
+        if (min_gap < -separation_ || Approach(a, b, start, touching) > 0) {
           take(start, points.front().point, points.front().normal);
           continue;
         }

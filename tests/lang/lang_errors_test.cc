@@ -23,12 +23,12 @@ struct BadInput {
   int line;          // expected line of the diagnostic
   int column;        // expected column, 0 = not checked
   const char* what;  // substring of the message
-  // The evaluation's time limit.  Cases about a size limit get a long one so
+  // The evaluation's time limit.  Cases about another limit get a long one so
   // that on a loaded machine the time limit cannot be what stops them first.
   int time_limit_ms = 300;
 };
 
-constexpr int kSizeCase = 20000;
+constexpr int kOtherLimit = 20000;
 
 std::string B(const char* rest) { return std::string(kBox) + rest; }
 
@@ -68,7 +68,7 @@ std::vector<BadInput> Catalogue() {
       {"EndlessLoop", B("\nwhile 1 {}\nbody b1 -shape box\n"), 3, 1,
        "scene exceeded its time limit (0.3 s)"},
       {"EndlessCountingLoop", B("set i 0\nwhile 1 {incr i}\n"), 3, 0,
-       "scene exceeded its command limit (100000 commands)"},
+       "scene exceeded its command limit (100000 commands)", kOtherLimit},
       {"DeepRecursion", B("proc f {} {f}; f\n"), 2, 16, "too many nested evaluations"},
       {"UnbalancedOpenBrace", B("body b1 -shape box -init_pos {1 2\n  3\nset b 2\n"), 2, 30,
        "missing close-brace"},
@@ -101,27 +101,28 @@ std::vector<BadInput> Catalogue() {
       {"NestedInterpretersAreUnavailable", "interp create x\n", 1, 1,
        "invalid command name \"interp\""},
       {"HugeStringRepeat", "set x [string repeat x 1000000000]\n", 1, 8, "above the scene limit",
-       kSizeCase},
-      {"HugeListRepeat", "set x [lrepeat 100000000 a]\n", 1, 8, "above the scene limit", kSizeCase},
+       kOtherLimit},
+      {"HugeListRepeat", "set x [lrepeat 100000000 a]\n", 1, 8, "above the scene limit",
+       kOtherLimit},
       {"DoublingString", "set s x\nwhile 1 {append s $s}\n", 2, 0, "above the scene limit",
-       kSizeCase},
+       kOtherLimit},
       {"ConcatPastTheValueLimit",
        "set t [string repeat x 10000000]\nset all [concat {*}[lrepeat 300 $t]]\n", 2, 0,
-       "come to more than 64 MB in all", kSizeCase},
+       "come to more than 64 MB in all", kOtherLimit},
       {"JoinWithAHugeSeparator",
        "set s [string repeat x 10000000]\nset l [lrepeat 1000 a]\nset j [join $l $s]\n", 3, 0,
-       "the result of \"join\" could reach", kSizeCase},
+       "the result of \"join\" could reach", kOtherLimit},
       {"StringMapBlowUp",
        "set s [string repeat a 10000000]\nset m [string map [list a [string repeat b 1000]] $s]\n",
-       2, 0, "the result of \"string\" could reach", kSizeCase},
+       2, 0, "the result of \"string\" could reach", kOtherLimit},
       {"RegsubBlowUp",
        "set s [string repeat a 1000000]\nregsub -all a $s [string repeat & 300] r\n", 2, 0,
-       "the result of \"regsub\" could reach", kSizeCase},
+       "the result of \"regsub\" could reach", kOtherLimit},
       {"NestedListsWhoseStringWouldBeHuge",
        "set l [lrepeat 4000 [lrepeat 4000 [string repeat x 1000]]]\nstring length $l\n", 1, 0,
-       "come to more than 64 MB in all", kSizeCase},
+       "come to more than 64 MB in all", kOtherLimit},
       {"HugeFormatWidth", "set s [format %900000000s x]\n", 1, 0, "above the scene limit",
-       kSizeCase},
+       kOtherLimit},
       {"DeeplyNestedBrackets", "set x " + std::string(300, '[') + std::string(300, ']') + "\n", 1,
        263, "nested more than 256 deep"},
       {"DeeplyNestedBracketsBuiltAtRunTime",
