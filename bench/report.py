@@ -454,6 +454,34 @@ def main():
             p.save(os.path.join(plots, "energy.svg"))
             md += [f"![energy]({rel}/energy.svg)", ""]
 
+    # ---- contact ---------------------------------------------------------
+    cs = read(os.path.join(out, "contact.csv"))
+    if cs:
+        md += ["## Contact suite", "",
+               "Piles of unit cubes dropped at random rotations onto a floor (restitution 0.5, "
+               "friction 0.5) and balls (radius 0.2, restitution 1, no gravity) in a closed box of "
+               "side 10, the same bodies for Asgard and for Bullet (double precision, fixed steps "
+               "h = 1/240, sleeping on). CPU seconds of the run; penetration is the deepest of any "
+               "body into the floor or walls at any 30 Hz frame; final KE the total kinetic energy "
+               "at the end (a settled pile: 0); drift |E(t1) − E(0)| / E(0) for the balls, whose "
+               "energy restitution 1 keeps. Asgard's collision counters: windows checked, broad-"
+               "phase pairs, narrow-phase (time-of-impact) queries, distance queries, impacts.", "",
+               "| scene | bodies | t1 [s] | code | status | CPU [s] | × Bullet | penetration | final KE | energy drift | impacts | windows | pairs | TOI queries | distance queries |",
+               "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|"]
+        bullet = {r["scene"]: num(r["cpu_s"]) for r in cs if r["code"].startswith("bullet")}
+        for r in cs:
+            ratio = ""
+            b = bullet.get(r["scene"])
+            if r["code"] == "asgard" and b and num(r["cpu_s"]) is not None:
+                ratio = fmt(num(r["cpu_s"]) / b)
+            st_ = r["status"] if r["status"] == "ok" else f"**{r['status']}** {r['error']}"
+            md.append(f"| {r['scene']} | {r['bodies']} | {r['t1']} | {r['code']} | {st_} | "
+                      f"{fmt(num(r['cpu_s']))} | {ratio} | {fmt(num(r['max_penetration']))} | "
+                      f"{fmt(num(r['final_kinetic']))} | {fmt(num(r['energy_drift']))} | "
+                      f"{r['impacts']} | {r['windows']} | {r['broad_pairs']} | "
+                      f"{r['narrow_queries']} | {r['distance_queries']} |")
+        md.append("")
+
     notes = os.path.join(os.path.dirname(os.path.abspath(__file__)), "notes.md")
     if os.path.exists(notes):
         md += ["", open(notes).read().strip(), ""]

@@ -17,5 +17,7 @@ void RunFigure511(const Config& cfg);
 void RunSkip(const Config& cfg);
 // Numerical stress suite.  stress.csv, energy.csv
 void RunStress(const Config& cfg);
+// Contact: piles of cubes and balls in a box, Asgard against Bullet.  contact.csv
+void RunContact(const Config& cfg);
 
 }  // namespace asgard::bench
