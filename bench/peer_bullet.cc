@@ -2,11 +2,11 @@
 // scenes: rigid bodies joined by point-to-point constraints (sequential
 // impulse solver, default 10 iterations), the top as a free body with the
 // implicit gyroscopic term.  Fixed steps.
-#include <btBulletDynamicsCommon.h>
 
 #include <cmath>
 #include <memory>
 
+#include "bench/bullet_world.h"
 #include "bench/peers.h"
 
 #ifndef BT_USE_DOUBLE_PRECISION
@@ -22,11 +22,8 @@ bool Fits(const WpScene& s) { return s.rigid.has_value() || s.top.has_value(); }
 PeerRun Run(const WpScene& s, double h, const std::vector<double>& times) {
   PeerRun out;
   const double c0 = ThreadCpuSeconds();
-  btDefaultCollisionConfiguration config;
-  btCollisionDispatcher dispatcher(&config);
-  btDbvtBroadphase broadphase;
-  btSequentialImpulseConstraintSolver solver;
-  btDiscreteDynamicsWorld world(&dispatcher, &broadphase, &solver, &config);
+  BulletWorld bullet;
+  btDiscreteDynamicsWorld& world = bullet.world;
   world.setGravity(btVector3(0, s.rigid ? -s.rigid->g : 0.0, 0));
   btSphereShape shape(0.5);
   std::vector<std::unique_ptr<btDefaultMotionState>> states;

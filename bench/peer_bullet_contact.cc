@@ -3,10 +3,10 @@
 // margins, a static floor or six static walls, restitution and friction as
 // in the scene (Bullet multiplies the bodies' coefficients, as Asgard does
 // for restitution), fixed steps h without substeps, sleeping on.
-#include <btBulletDynamicsCommon.h>
 
 #include <memory>
 
+#include "bench/bullet_world.h"
 #include "bench/contact.h"
 #include "bench/harness.h"
 
@@ -37,11 +37,8 @@ double Penetration(const ContactScene& s, bool cube, double radius, const btTran
 ContactResult RunBulletContact(const ContactScene& s, double h) {
   ContactResult out;
   const double c0 = ThreadCpuSeconds();
-  btDefaultCollisionConfiguration config;
-  btCollisionDispatcher dispatcher(&config);
-  btDbvtBroadphase broadphase;
-  btSequentialImpulseConstraintSolver solver;
-  btDiscreteDynamicsWorld world(&dispatcher, &broadphase, &solver, &config);
+  BulletWorld bullet;
+  btDiscreteDynamicsWorld& world = bullet.world;
   world.setGravity(btVector3(0, -s.gravity, 0));
   btBoxShape cube(btVector3(0.5, 0.5, 0.5));
   btSphereShape ball(0.2);
