@@ -33,6 +33,14 @@ int Waveform::KeepIndex(double t) const {
 int Waveform::Locate(double t, Side side) const {
   const int n = size();
   if (n == 1) return 0;
+  // The hinted segment or the next: the same answers as the searches below.
+  for (int h = std::min(hint_, n - 2), tries = 0; tries < 2 && h + 1 < n; ++h, ++tries) {
+    const double a = times_[static_cast<size_t>(h)], b = times_[static_cast<size_t>(h) + 1];
+    if (side == Side::kLeft ? (a < t && t <= b) : (a <= t && t < b)) {
+      hint_ = h;
+      return h;
+    }
+  }
   int k;
   if (side == Side::kLeft) {
     // segment with time(k) < t <= time(k+1)
@@ -41,7 +49,9 @@ int Waveform::Locate(double t, Side side) const {
     // segment with time(k) <= t < time(k+1)
     k = static_cast<int>(std::upper_bound(times_.begin(), times_.end(), t) - times_.begin()) - 1;
   }
-  return std::clamp(k, 0, n - 1);
+  k = std::clamp(k, 0, n - 1);
+  hint_ = k;
+  return k;
 }
 
 namespace {

@@ -87,6 +87,9 @@ class Waveform {
   std::vector<double> f_;
   std::vector<double> b_;
   std::vector<SampleInfo> info_;
+  // The segment the last lookup found: lookups come in runs close in time
+  // (collision queries, readers' steps), so most need no binary search.
+  mutable int hint_ = 0;
 };
 
 }  // namespace asgard::solver
