@@ -185,6 +185,60 @@ size_t ResultBound(GuardState& guard, int objc, Tcl_Obj* const objv[]) {
   return 0;
 }
 
+// Commands that build a list of far more elements than their arguments
+// hold values (each element a Tcl object of about 50 bytes besides its
+// text: 16 MB split into single characters takes over 1 GB before the next
+// memory check): a bound on the element count, or 0 when it is small.
+size_t ElementBound(int objc, Tcl_Obj* const objv[]) {
+  const std::string_view name = CommandName(objv[0]);
+  if (name == "split" && (objc == 2 || objc == 3)) {
+    int len = 0;
+    const char* s = Tcl_GetStringFromObj(objv[1], &len);
+    if (static_cast<size_t>(len) < kMaxListElements) return 0;
+    // The exact count: one more than the separators (default: white
+    // space), or every character with an empty separator list.
+    std::vector<Tcl_UniChar> seps;
+    const char* chars = objc == 3 ? Tcl_GetString(objv[2]) : " \t\n\r";
+    for (const char* p = chars; *p != '\0';) {
+      Tcl_UniChar c = 0;
+      p += Tcl_UtfToUniChar(p, &c);
+      seps.push_back(c);
+    }
+    size_t count = 1;
+    for (const char* p = s; p < s + len;) {
+      Tcl_UniChar c = 0;
+      p += Tcl_UtfToUniChar(p, &c);
+      if (seps.empty() || std::find(seps.begin(), seps.end(), c) != seps.end()) ++count;
+    }
+    return count;
+  }
+  if (name == "regexp" && objc >= 3) {
+    // regexp ?switches? exp string ...: with -all -inline, every match (at
+    // most one per input character, and one more) adds itself and each
+    // subexpression (at most one per '(' of exp).
+    bool all = false, inline_ = false;
+    int i = 1;
+    for (; i < objc && Tcl_GetString(objv[i])[0] == '-'; ++i) {
+      const std::string_view sw = Tcl_GetString(objv[i]);
+      if (sw == "--") {
+        ++i;
+        break;
+      }
+      all |= sw == "-all";
+      inline_ |= sw == "-inline";
+      if (sw == "-start") ++i;
+    }
+    if (!all || !inline_ || i + 1 >= objc) return 0;
+    const std::string_view exp = Tcl_GetString(objv[i]);
+    int len = 0;
+    Tcl_GetStringFromObj(objv[i + 1], &len);
+    const size_t groups = 1 + static_cast<size_t>(std::count(exp.begin(), exp.end(), '('));
+    const size_t bound = (static_cast<size_t>(len) + 1) * groups;
+    return bound > kMaxListElements ? bound : 0;
+  }
+  return 0;
+}
+
 void SetError(Tcl_Interp* interp, const std::string& message) {
   Tcl_SetObjResult(interp, Tcl_NewStringObj(message.data(), static_cast<int>(message.size())));
 }
@@ -273,6 +327,12 @@ int GuardTrace(ClientData data, Tcl_Interp* interp, int, const char*, Tcl_Comman
       SetError(interp, "the result of \"" + FirstWord(objv[0]) + "\" could reach " +
                            std::to_string(bound) + " bytes, above the scene limit of " +
                            MegaBytes(kMaxResultBytes));
+      return TCL_ERROR;
+    }
+    if (const size_t count = ElementBound(objc, objv); count > kMaxListElements) {
+      SetError(interp, "the result of \"" + FirstWord(objv[0]) + "\" could have " +
+                           std::to_string(count) + " elements, above the scene limit of " +
+                           std::to_string(kMaxListElements) + " elements");
       return TCL_ERROR;
     }
   }
