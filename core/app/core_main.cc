@@ -135,7 +135,9 @@ long long Integer(const json& params, const char* name, long long lo, long long 
     // 640.0 is an integer; 1e300 and 0.5 are not (and converting them would
     // be undefined).
     const double d = v.get<double>();
-    if (!(d >= static_cast<double>(lo) && d <= static_cast<double>(hi)) || d != std::floor(d))
+    // (double)hi may round up to 2^63, which no long long holds.
+    if (!(d >= static_cast<double>(lo) && d <= static_cast<double>(hi) && d < 0x1p63) ||
+        d != std::floor(d))
       BadParam(name, range);
     return static_cast<long long>(d);
   }

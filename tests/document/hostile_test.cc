@@ -448,6 +448,10 @@ std::vector<ProtocolCase> ProtocolCatalogue() {
       {"OpenWithANegativeHeight",
        Req(20, "open_rendition", R"({"rendition":0,"width":16,"height":-1,"offset":0})"), "20",
        "invalid params: 'height' must be an integer from 1 to " + side},
+      {"OpenWithAnOffsetOfTwoToThe63",
+       Req(45, "open_rendition",
+           R"({"rendition":0,"width":16,"height":16,"offset":9223372036854775808.0})"),
+       "45", "invalid params: 'offset' must be an integer from 0 to"},
       {"OpenWithANegativeOffset",
        Req(21, "open_rendition", R"({"rendition":0,"width":16,"height":16,"offset":-5})"), "21",
        "invalid params: 'offset' must be an integer from 0 to"},
@@ -517,7 +521,7 @@ TEST(HostileProtocol, EveryBadMessageIsAnsweredWithItsPlace) {
         << c.name << ": " << a;
     EXPECT_NE(a.find(c.words), std::string::npos) << c.name << ": " << a;
   }
-  EXPECT_EQ(bad, 42);  // and 5 setup messages
+  EXPECT_EQ(bad, 43);  // and 5 setup messages
 }
 
 }  // namespace
