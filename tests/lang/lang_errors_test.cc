@@ -23,8 +23,9 @@ struct BadInput {
   int line;          // expected line of the diagnostic
   int column;        // expected column, 0 = not checked
   const char* what;  // substring of the message
-  // The evaluation's time limit.  Cases about a size limit get a long one so
-  // that on a loaded machine the time limit cannot be what stops them first.
+  // The evaluation's time limit.  Cases about a size or command limit get a
+  // long one so that on a loaded machine (or under a sanitizer) the time
+  // limit cannot be what stops them first.
   int time_limit_ms = 300;
 };
 
@@ -68,7 +69,7 @@ std::vector<BadInput> Catalogue() {
       {"EndlessLoop", B("\nwhile 1 {}\nbody b1 -shape box\n"), 3, 1,
        "scene exceeded its time limit (0.3 s)"},
       {"EndlessCountingLoop", B("set i 0\nwhile 1 {incr i}\n"), 3, 0,
-       "scene exceeded its command limit (100000 commands)"},
+       "scene exceeded its command limit (100000 commands)", kSizeCase},
       {"DeepRecursion", B("proc f {} {f}; f\n"), 2, 16, "too many nested evaluations"},
       {"UnbalancedOpenBrace", B("body b1 -shape box -init_pos {1 2\n  3\nset b 2\n"), 2, 30,
        "missing close-brace"},
@@ -217,7 +218,7 @@ std::vector<BadInput> Catalogue() {
        "the arguments of \"list\" come to more than 64 MB in all", kSizeCase},
       {"LmapPastTheCommandLimit",
        "set l [lrepeat 200000 a]\nset m [lmap x $l {string length $x}]\n", 2, 0,
-       "scene exceeded its command limit (100000 commands)"},
+       "scene exceeded its command limit (100000 commands)", kSizeCase},
       {"ExponentTooLarge", "set x [expr {10**1000000000}]\n", 1, 8, "exponent too large"},
       {"DivisionByZero", "set x [expr {1/0}]\n", 1, 8, "divide by zero"},
       // Commands a safe interpreter does not have.
