@@ -678,7 +678,11 @@ scene::Scene Evaluate(std::string_view text, const EvalLimits& limits) {
                                LineIndex(text).Span(at, at + 1)});
       return s;
     }
-    EvalContext ctx(text, limits);
+    // Tcl may look at the byte after a command's text (fuzz_scene saw it
+    // read past a scene that ended the buffer holding it): evaluate a copy
+    // that ends with a NUL.
+    const std::string owned(text);
+    EvalContext ctx(owned, limits);
     Run(ctx);
     return std::move(ctx.scene);
   } catch (const std::exception& e) {

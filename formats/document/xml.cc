@@ -16,6 +16,7 @@
 #include <libxml/parser.h>
 #include <libxml/tree.h>
 
+#include <algorithm>
 #include <memory>
 
 #include "formats/document/file.h"
@@ -272,6 +273,10 @@ ParseResult ParseXml(std::string_view bytes) {
   }
   if (auto e = CheckStructure(d)) {
     result.error = *e;
+    // What is missing at the top level is missing from the ens:file element.
+    if (result.error.line < 1) result.error.line = static_cast<int>(xmlGetLineNo(root));
+    result.error.line = std::max(result.error.line, 1);
+    result.error.column = std::max(result.error.column, 1);
     return result;
   }
   result.document = std::move(d);

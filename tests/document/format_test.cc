@@ -262,6 +262,10 @@ TEST(Errors, XmlCatalogueIsLocated) {
        "Opening and ending tag mismatch: A line 5 and X"},
       {head + "<ens:header>DOCUMENT X</ens:header>\n<Y/></ens:file>", 4, 0, "does not match"},
       {head + "<X/></ens:file>", 3, 1, "<X> before the 'DOCUMENT <TYPE>' line"},
+      // Found by fuzz_xml: an empty ens:file was refused at line 0.
+      {head + "</ens:file>", 2, 1, "a document without its 'DOCUMENT <TYPE>' line"},
+      {head + "<ens:header>DOCUMENT X</ens:header>\n</ens:file>", 2, 1,
+       "a document without its root element"},
   };
   ExpectLocated(cases, [](const std::string& t) { return ParseXml(t); });
 }

@@ -3,9 +3,12 @@
 #include <gtest/gtest.h>
 
 #include <chrono>
+#include <cstring>
 #include <functional>
+#include <memory>
 #include <ostream>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "core/lang/lang.h"
@@ -389,6 +392,29 @@ TEST(LangRecovery, ManyErrorsAreCapped) {
   Scene s = Evaluate(text);
   EXPECT_LE(s.diagnostics.size(), 201u);
   EXPECT_GE(s.diagnostics.size(), 200u);
+}
+
+// fuzz_scene once saw Tcl read past the end of a scene held in a buffer of
+// exactly its size (AddressSanitizer: heap-buffer-overflow in
+// Tcl_NewStringObj under Tcl_EvalEx; the input did not fail again alone, see
+// docs/fuzzing.md).  Evaluate now hands Tcl a NUL-terminated copy.  Each
+// text here sits in a buffer of exactly its size and ends inside an
+// unfinished word; under AddressSanitizer a read past it fails the test.
+TEST(LangRecovery, TextsThatEndWithoutANulAreNotReadPastTheirEnd) {
+  const std::pair<std::string, int> cases[] = {
+      {"set x \"abc", 1},
+      {"set y {abc", 1},
+      {"set z [list a", 1},
+      {"body b1 -shape nope", 1},
+      {"set w \"a\n\"\nset v \"\n", 3},
+  };
+  for (const auto& [text, line] : cases) {
+    std::unique_ptr<char[]> exact(new char[text.size()]);
+    std::memcpy(exact.get(), text.data(), text.size());
+    Scene s = Evaluate(std::string_view(exact.get(), text.size()));
+    ASSERT_TRUE(s.has_errors()) << text;
+    EXPECT_EQ(s.diagnostics[0].span.line, line) << text;
+  }
 }
 
 TEST(LangRecovery, EmptyAndCommentOnlyScenesAreFine) {
