@@ -258,6 +258,22 @@ size_t ElementBound(int objc, Tcl_Obj* const objv[]) {
   return 0;
 }
 
+// lrepeat shares its values, so its list is cheap, but the list's text (made
+// when it is substituted into a word: `[lrepeat 4000 $big]x`) is count times
+// theirs, built inside the substitution where no check runs.  A list whose
+// text is over the command limit could not be passed to any command anyway,
+// so it is not made.  The text's size, or 0 when it is not lrepeat.
+size_t RepeatedListBytes(GuardState& guard, int objc, Tcl_Obj* const objv[]) {
+  if (CommandName(objv[0]) != "lrepeat" || objc < 3) return 0;
+  Tcl_WideInt count = 0;
+  if (Tcl_GetWideIntFromObj(nullptr, objv[1], &count) != TCL_OK || count <= 0) return 0;
+  // Too many elements: lrepeat itself refuses that, with its own message.
+  if (static_cast<size_t>(count) > kMaxListElements / static_cast<size_t>(objc - 2)) return 0;
+  size_t per = 0;
+  for (int i = 2; i < objc; ++i) per += StringBytes(guard, objv[i], kMaxCommandBytes) + 3;
+  return static_cast<size_t>(count) * per;
+}
+
 void SetError(Tcl_Interp* interp, const std::string& message) {
   Tcl_SetObjResult(interp, Tcl_NewStringObj(message.data(), static_cast<int>(message.size())));
 }
@@ -346,6 +362,12 @@ int GuardTrace(ClientData data, Tcl_Interp* interp, int, const char*, Tcl_Comman
       SetError(interp, "the result of \"" + FirstWord(objv[0]) + "\" could reach " +
                            std::to_string(bound) + " bytes, above the scene limit of " +
                            MegaBytes(kMaxResultBytes));
+      return TCL_ERROR;
+    }
+    if (const size_t text = RepeatedListBytes(*guard, objc, objv); text > kMaxCommandBytes) {
+      SetError(interp, "lrepeat: the result would come to " + std::to_string(text) +
+                           " bytes as text, above the scene limit of " +
+                           MegaBytes(kMaxCommandBytes));
       return TCL_ERROR;
     }
     if (const size_t count = ElementBound(objc, objv); count > kMaxListElements) {

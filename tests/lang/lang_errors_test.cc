@@ -111,7 +111,10 @@ std::vector<BadInput> Catalogue() {
        kSizeCase},
       {"ConcatPastTheValueLimit",
        "set t [string repeat x 10000000]\nset all [concat {*}[lrepeat 300 $t]]\n", 2, 0,
-       "come to more than 64 MB in all", kSizeCase},
+       "lrepeat: the result would come to 3000000900 bytes as text", kSizeCase},
+      {"ConcatOfManyLargeArguments",
+       "set t [string repeat x 10000000]\nset all [concat $t $t $t $t $t $t $t]\n", 2, 0,
+       "the arguments of \"concat\" come to more than 64 MB in all", kSizeCase},
       {"JoinWithAHugeSeparator",
        "set s [string repeat x 10000000]\nset l [lrepeat 1000 a]\nset j [join $l $s]\n", 3, 0,
        "the result of \"join\" could reach", kSizeCase},
@@ -123,7 +126,14 @@ std::vector<BadInput> Catalogue() {
        "the result of \"regsub\" could reach", kSizeCase},
       {"NestedListsWhoseStringWouldBeHuge",
        "set l [lrepeat 4000 [lrepeat 4000 [string repeat x 1000]]]\nstring length $l\n", 1, 0,
-       "come to more than 64 MB in all", kSizeCase},
+       "lrepeat: the result would come to 16048012000 bytes as text, above the scene limit of "
+       "64 MB",
+       kSizeCase},
+      // Found by fuzz_scene (1.6 GB of text made inside one word's
+      // substitution, 3.3 GB in all, before any check could run).
+      {"RepeatedListSubstitutedIntoAWord",
+       "set l [lrepeat 4000 [lrepeat 4000 [string repeat x 100]]0t]s\n", 1, 0,
+       "lrepeat: the result would come to 1616016000 bytes as text", kSizeCase},
       {"HugeFormatWidth", "set s [format %900000000s x]\n", 1, 0, "above the scene limit",
        kSizeCase},
       {"DeeplyNestedBrackets", "set x " + std::string(300, '[') + std::string(300, ']') + "\n", 1,
