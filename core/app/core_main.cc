@@ -37,6 +37,7 @@
 #include <cstdlib>
 #include <cstring>
 #include <iostream>
+#include <limits>
 #include <map>
 #include <memory>
 #include <nlohmann/json.hpp>
@@ -104,6 +105,75 @@ struct RpcError {
   std::string message;
 };
 
+// The members of a request's params, checked: an error names the member
+// (its place in the request) and what it must be.
+[[noreturn]] void BadParam(const char* name, const std::string& what) {
+  throw RpcError{static_cast<int>(kInvalidParams),
+                 std::string("invalid params: '") + name + "' " + what};
+}
+
+const json& Param(const json& params, const char* name) {
+  if (!params.contains(name)) BadParam(name, "is missing");
+  return params[name];
+}
+
+long long Integer(const json& params, const char* name, long long lo, long long hi) {
+  const json& v = Param(params, name);
+  const std::string range =
+      "must be an integer from " + std::to_string(lo) + " to " + std::to_string(hi);
+  if (v.is_number_unsigned()) {
+    const auto u = v.get<unsigned long long>();
+    if (u > static_cast<unsigned long long>(hi)) BadParam(name, range);
+    return static_cast<long long>(u);
+  }
+  if (v.is_number_integer()) {
+    const auto i = v.get<long long>();
+    if (i < lo || i > hi) BadParam(name, range);
+    return i;
+  }
+  if (v.is_number_float()) {
+    // 640.0 is an integer; 1e300 and 0.5 are not (and converting them would
+    // be undefined).
+    const double d = v.get<double>();
+    // (double)hi may round up to 2^63, which no long long holds.
+    if (!(d >= static_cast<double>(lo) && d <= static_cast<double>(hi) && d < 0x1p63) ||
+        d != std::floor(d))
+      BadParam(name, range);
+    return static_cast<long long>(d);
+  }
+  BadParam(name, range);
+}
+
+double Number(const json& params, const char* name) {
+  const json& v = Param(params, name);
+  if (!v.is_number()) BadParam(name, "must be a number");
+  const double d = v.get<double>();
+  if (!std::isfinite(d)) BadParam(name, "must be finite");
+  return d;
+}
+
+bool Flag(const json& params, const char* name, bool fallback) {
+  if (!params.contains(name)) return fallback;
+  if (!params[name].is_boolean()) BadParam(name, "must be true or false");
+  return params[name].get<bool>();
+}
+
+std::string String(const json& params, const char* name) {
+  const json& v = Param(params, name);
+  if (!v.is_string()) BadParam(name, "must be a string");
+  return v.get<std::string>();
+}
+
+constexpr long long kIntMax = std::numeric_limits<int>::max();
+
+// nlohmann's message without its "[json.exception.out_of_range.406] " tag.
+std::string WithoutPrefix(const char* what) {
+  std::string s = what;
+  if (const size_t end = s.find("] "); !s.empty() && s[0] == '[' && end != std::string::npos)
+    s.erase(0, end + 2);
+  return s;
+}
+
 struct Rendition {
   int width = 0, height = 0;
   size_t offset = 0;
@@ -168,9 +238,19 @@ class Slave {
                     std::to_string(protocol::kMaxJsonDepth) + " deep");
       return true;
     }
-    const json request = json::parse(body, nullptr, false);
-    if (request.is_discarded()) {
-      SendError(nullptr, kParseError, "parse error: the message is not JSON");
+    json request;
+    try {
+      request = json::parse(body);
+    } catch (const json::parse_error& e) {
+      // e.byte: the 1-based position of the offending byte (one past the
+      // end when the text ends too soon).
+      SendError(nullptr, kParseError,
+                "parse error at byte " + std::to_string(e.byte) + ": the message is not JSON");
+      return true;
+    } catch (const json::exception& e) {
+      // Well-formed but unreadable: a number past the range of a double.
+      SendError(nullptr, kParseError,
+                std::string("parse error: the message cannot be read: ") + WithoutPrefix(e.what()));
       return true;
     }
     if (!request.is_object() || !request.contains("method") || !request["method"].is_string() ||
@@ -200,11 +280,7 @@ class Slave {
   }
 
  private:
-  static std::string Text(const json& params) {
-    if (!params.contains("text") || !params["text"].is_string())
-      throw RpcError{kInvalidParams, "invalid params: 'text' must be a string"};
-    return params["text"];
-  }
+  static std::string Text(const json& params) { return String(params, "text"); }
 
   json Dispatch(const std::string& method, const json& params, const json& id) {
     if (method == "load") return Load(Text(params));
@@ -216,7 +292,7 @@ class Slave {
     if (method == "simulate") return Simulate(id);
     if (method == "open_rendition") return OpenRendition(params);
     if (method == "close_rendition") {
-      renditions_.erase(params.at("rendition").get<int>());
+      renditions_.erase(static_cast<int>(Integer(params, "rendition", 0, kIntMax)));
       return {{"ok", true}};
     }
     if (method == "frame") return Frame(params);
@@ -226,7 +302,7 @@ class Slave {
       const bool done = method == "undo" ? session_->Undo() : session_->Redo();
       return {{"ok", done}, {"text", session_->text()}};
     }
-    if (method == "command") return Command(params.at("line").get<std::string>());
+    if (method == "command") return Command(String(params, "line"));
     if (auto r = editor_rpc::Dispatch(method, params, session_.get(), sampler_.get())) return *r;
     throw RpcError{kMethodNotFound, "unknown method '" + method + "'"};
   }
@@ -348,22 +424,21 @@ class Slave {
 
   json OpenRendition(const json& params) {
     Rendition r;
-    r.width = params.at("width").get<int>();
-    r.height = params.at("height").get<int>();
-    r.offset = params.at("offset").get<size_t>();
+    const int id = static_cast<int>(Integer(params, "rendition", 0, kIntMax));
     constexpr int kMax = protocol::kMaxRenditionSide;
-    if (r.width < 1 || r.height < 1 || r.width > kMax || r.height > kMax)
-      throw RpcError{kInvalidParams, "invalid params: rendition size must be 1.." +
-                                         std::to_string(kMax) + " each way"};
+    r.width = static_cast<int>(Integer(params, "width", 1, kMax));
+    r.height = static_cast<int>(Integer(params, "height", 1, kMax));
+    r.offset =
+        static_cast<size_t>(Integer(params, "offset", 0, std::numeric_limits<long long>::max()));
     const size_t bytes = static_cast<size_t>(r.width) * r.height * 4;
     if (!shm_ || r.offset > shm_size_ || bytes > shm_size_ - r.offset)
       throw RpcError{kInvalidParams, "invalid params: the rendition does not fit in shared memory"};
-    renditions_[params.at("rendition").get<int>()] = std::move(r);
+    renditions_[id] = std::move(r);
     return {{"ok", true}};
   }
 
   json Frame(const json& params) {
-    const int id = params.at("rendition").get<int>();
+    const int id = static_cast<int>(Integer(params, "rendition", 0, kIntMax));
     auto it = renditions_.find(id);
     if (it == renditions_.end())
       throw RpcError{kInvalidParams, "invalid params: no rendition " + std::to_string(id)};
@@ -375,11 +450,9 @@ class Slave {
       WriteAll(out_, junk, sizeof junk - 1);
       return nullptr;
     }
-    double t = params.at("t").get<double>();
-    if (!std::isfinite(t)) throw RpcError{kInvalidParams, "invalid params: t must be finite"};
-    t = std::clamp(t, sampler_->t0(), sampler_->t1());
-    const bool handles = params.value("handles", r.handles);
-    const bool wire = params.value("wire", r.wire);
+    const double t = std::clamp(Number(params, "t"), sampler_->t0(), sampler_->t1());
+    const bool handles = Flag(params, "handles", r.handles);
+    const bool wire = Flag(params, "wire", r.wire);
     render::FrameInput f;
     f.sampler = sampler_.get();
     f.t = t;

@@ -37,6 +37,19 @@
 #include <mutex>
 #include <unordered_map>
 
+#if defined(__SANITIZE_ADDRESS__)
+#define ASGARD_ASAN_ALLOCATOR 1
+#elif defined(__has_feature)
+#if __has_feature(address_sanitizer)
+#define ASGARD_ASAN_ALLOCATOR 1
+#endif
+#endif
+#ifdef ASGARD_ASAN_ALLOCATOR
+// The sanitizer runtime's count of bytes in live allocations (declared in
+// <sanitizer/allocator_interface.h>, which GCC does not ship).
+extern "C" size_t __sanitizer_get_current_allocated_bytes();
+#endif
+
 #include "core/lang/eval_context.h"
 #include "core/lang/lang.h"
 
@@ -87,8 +100,14 @@ void InitTcl() {
 }
 
 size_t HeapInUse() {
+#ifdef ASGARD_ASAN_ALLOCATOR
+  // AddressSanitizer replaces malloc; glibc's mallinfo2 then sees nothing and
+  // the memory limit would never trip.
+  return __sanitizer_get_current_allocated_bytes();
+#else
   struct mallinfo2 mi = mallinfo2();
   return mi.uordblks + mi.hblkhd;
+#endif
 }
 
 struct GuardState {
@@ -185,6 +204,76 @@ size_t ResultBound(GuardState& guard, int objc, Tcl_Obj* const objv[]) {
   return 0;
 }
 
+// Commands that build a list of far more elements than their arguments
+// hold values (each element a Tcl object of about 50 bytes besides its
+// text: 16 MB split into single characters takes over 1 GB before the next
+// memory check): a bound on the element count, or 0 when it is small.
+size_t ElementBound(int objc, Tcl_Obj* const objv[]) {
+  const std::string_view name = CommandName(objv[0]);
+  if (name == "split" && (objc == 2 || objc == 3)) {
+    int len = 0;
+    const char* s = Tcl_GetStringFromObj(objv[1], &len);
+    if (static_cast<size_t>(len) < kMaxListElements) return 0;
+    // The exact count: one more than the separators (default: white
+    // space), or every character with an empty separator list.
+    std::vector<Tcl_UniChar> seps;
+    const char* chars = objc == 3 ? Tcl_GetString(objv[2]) : " \t\n\r";
+    for (const char* p = chars; *p != '\0';) {
+      Tcl_UniChar c = 0;
+      p += Tcl_UtfToUniChar(p, &c);
+      seps.push_back(c);
+    }
+    size_t count = 1;
+    for (const char* p = s; p < s + len;) {
+      Tcl_UniChar c = 0;
+      p += Tcl_UtfToUniChar(p, &c);
+      if (seps.empty() || std::find(seps.begin(), seps.end(), c) != seps.end()) ++count;
+    }
+    return count;
+  }
+  if (name == "regexp" && objc >= 3) {
+    // regexp ?switches? exp string ...: with -all -inline, every match (at
+    // most one per input character, and one more) adds itself and each
+    // subexpression (at most one per '(' of exp).
+    bool all = false, inline_ = false;
+    int i = 1;
+    for (; i < objc && Tcl_GetString(objv[i])[0] == '-'; ++i) {
+      const std::string_view sw = Tcl_GetString(objv[i]);
+      if (sw == "--") {
+        ++i;
+        break;
+      }
+      all |= sw == "-all";
+      inline_ |= sw == "-inline";
+      if (sw == "-start") ++i;
+    }
+    if (!all || !inline_ || i + 1 >= objc) return 0;
+    const std::string_view exp = Tcl_GetString(objv[i]);
+    int len = 0;
+    Tcl_GetStringFromObj(objv[i + 1], &len);
+    const size_t groups = 1 + static_cast<size_t>(std::count(exp.begin(), exp.end(), '('));
+    const size_t bound = (static_cast<size_t>(len) + 1) * groups;
+    return bound > kMaxListElements ? bound : 0;
+  }
+  return 0;
+}
+
+// lrepeat shares its values, so its list is cheap, but the list's text (made
+// when it is substituted into a word: `[lrepeat 4000 $big]x`) is count times
+// theirs, built inside the substitution where no check runs.  A list whose
+// text is over the command limit could not be passed to any command anyway,
+// so it is not made.  The text's size, or 0 when it is not lrepeat.
+size_t RepeatedListBytes(GuardState& guard, int objc, Tcl_Obj* const objv[]) {
+  if (CommandName(objv[0]) != "lrepeat" || objc < 3) return 0;
+  Tcl_WideInt count = 0;
+  if (Tcl_GetWideIntFromObj(nullptr, objv[1], &count) != TCL_OK || count <= 0) return 0;
+  // Too many elements: lrepeat itself refuses that, with its own message.
+  if (static_cast<size_t>(count) > kMaxListElements / static_cast<size_t>(objc - 2)) return 0;
+  size_t per = 0;
+  for (int i = 2; i < objc; ++i) per += StringBytes(guard, objv[i], kMaxCommandBytes) + 3;
+  return static_cast<size_t>(count) * per;
+}
+
 void SetError(Tcl_Interp* interp, const std::string& message) {
   Tcl_SetObjResult(interp, Tcl_NewStringObj(message.data(), static_cast<int>(message.size())));
 }
@@ -273,6 +362,18 @@ int GuardTrace(ClientData data, Tcl_Interp* interp, int, const char*, Tcl_Comman
       SetError(interp, "the result of \"" + FirstWord(objv[0]) + "\" could reach " +
                            std::to_string(bound) + " bytes, above the scene limit of " +
                            MegaBytes(kMaxResultBytes));
+      return TCL_ERROR;
+    }
+    if (const size_t text = RepeatedListBytes(*guard, objc, objv); text > kMaxCommandBytes) {
+      SetError(interp, "lrepeat: the result would come to " + std::to_string(text) +
+                           " bytes as text, above the scene limit of " +
+                           MegaBytes(kMaxCommandBytes));
+      return TCL_ERROR;
+    }
+    if (const size_t count = ElementBound(objc, objv); count > kMaxListElements) {
+      SetError(interp, "the result of \"" + FirstWord(objv[0]) + "\" could have " +
+                           std::to_string(count) + " elements, above the scene limit of " +
+                           std::to_string(kMaxListElements) + " elements");
       return TCL_ERROR;
     }
   }
@@ -599,7 +700,11 @@ scene::Scene Evaluate(std::string_view text, const EvalLimits& limits) {
                                LineIndex(text).Span(at, at + 1)});
       return s;
     }
-    EvalContext ctx(text, limits);
+    // Tcl may look at the byte after a command's text (fuzz_scene saw it
+    // read past a scene that ended the buffer holding it): evaluate a copy
+    // that ends with a NUL.
+    const std::string owned(text);
+    EvalContext ctx(owned, limits);
     Run(ctx);
     return std::move(ctx.scene);
   } catch (const std::exception& e) {

@@ -4,11 +4,66 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <memory>
+#include <sstream>
 
 #include "core/lang/lang.h"
 #include "core/protocol/protocol.h"
 
 namespace asgard::pipeline {
+namespace {
+
+// "name (line N)" of every body of the equations, for budget messages.
+std::vector<std::string> BodyLabels(const scene::Scene& scene, const physics::EquationSystem& eq) {
+  std::vector<std::string> label;
+  for (const auto& m : eq.bodies) {
+    label.push_back(m.name);
+    const scene::Body* body = scene.FindBody(m.name);
+    if (body && body->command.known())
+      label.back() += " (line " + std::to_string(body->command.line) + ")";
+  }
+  return label;
+}
+
+// Enforces the budget's impacts per run around the monitor's own after_step
+// hook: once a run has applied more impulses than that, it fails naming the
+// time and the bodies (and their scene lines) of the latest impact.
+void LimitImpacts(const scene::Scene& scene, solver::Simulation& sim,
+                  const solver::CollisionMonitor& monitor) {
+  auto at_start = std::make_shared<long>(0);
+  sim.before_run = [at_start, &monitor](solver::Simulation&) {
+    *at_start = monitor.counters().impacts;
+  };
+  sim.after_step = [inner = sim.after_step, at_start, &monitor,
+                    label = BodyLabels(scene, sim.system())](solver::Simulation& s, int c) {
+    if (inner) inner(s, c);
+    const long limit = s.budget().impacts;
+    if (monitor.counters().impacts - *at_start <= limit || monitor.impacts().empty()) return;
+    const solver::Impact& last = monitor.impacts().back();
+    std::ostringstream msg;
+    msg << "the run exceeded its budget of " << limit << " impacts at t=" << s.time_reached()
+        << " of [" << s.system().t0 << ", " << s.system().t1 << "]; the latest between bodies "
+        << label[last.a] << " and " << label[last.b] << " at t=" << last.t;
+    s.Fail(msg.str());
+  };
+}
+
+// The latest impact of body b, "; the latest against NAME (line N) at t=T",
+// or "" when it has none.
+std::string LatestImpactOf(const Run& run, int b) {
+  if (!run.collisions) return "";
+  const auto& impacts = run.collisions->impacts();
+  for (auto it = impacts.rbegin(); it != impacts.rend(); ++it) {
+    if (it->a != b && it->b != b) continue;
+    std::ostringstream s;
+    s << "; the latest against "
+      << BodyLabels(run.scene, *run.equations)[it->a == b ? it->b : it->a] << " at t=" << it->t;
+    return s.str();
+  }
+  return "";
+}
+
+}  // namespace
 
 Run Check(scene::Scene scene, const RunOptions& options) {
   Run run;
@@ -43,17 +98,24 @@ bool Solve(Run& run, const RunOptions& options) {
   const auto start = std::chrono::steady_clock::now();
   run.simulation = std::make_unique<solver::Simulation>(*run.equations, so);
   const bool collide = options.collisions.value_or(!simulator || simulator->collisions);
-  if (collide && run.equations->bodies.size() >= 2)
+  run.simulation->set_budget(options.budget);
+  if (collide && run.equations->bodies.size() >= 2) {
     run.collisions = std::make_unique<solver::CollisionMonitor>(*run.simulation);
+    if (options.budget.impacts > 0) LimitImpacts(run.scene, *run.simulation, *run.collisions);
+  }
   if (options.prepare_only) return run.ok = true;
   const bool ok = run.simulation->Run(options.progress);
   if (run.collisions)
     for (const auto& w : run.collisions->warnings()) run.diagnostics.push_back(w);
   run.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   if (!ok) run.solver_error = run.simulation->error();
-  // A value that stopped being finite: name the body's command line too.
+  // A value that stopped being finite, a budget a body exhausted: name the
+  // body's command line too (and, for its impulses, what it kept hitting).
   if (const int v = run.simulation->failed_variable(); !ok && v >= 0) {
     const int b = run.equations->variables[v].body;
+    if (b >= 0 && run.simulation->impulses_this_run(b) > options.budget.impulses_per_body &&
+        options.budget.impulses_per_body > 0)
+      run.solver_error += LatestImpactOf(run, b);
     for (const auto& body : run.scene.bodies)
       if (b >= 0 && body.name == run.equations->bodies[b].name && body.command.known())
         run.solver_error = "line " + std::to_string(body.command.line) + ": body " + body.name +

@@ -43,6 +43,7 @@ struct RunOptions {
   std::optional<bool> collisions;    // overrides simulator -collisions
   bool allow_scene_errors = false;   // simulate the valid part of a scene with errors
   bool prepare_only = false;         // build the simulation but do not run it
+  solver::RunBudget budget;          // steps, impacts and memory one run may spend
   std::function<void(double)> progress;
 };
 

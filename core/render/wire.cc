@@ -261,8 +261,7 @@ void OverlayImage(Image& image, const FrameInput& f, const Overlays& o, const Wi
   cairo_surface_destroy(s);
 }
 
-VectorDocument::VectorDocument(const std::string& path, Format format, int width, int height)
-    : format_(format) {
+VectorDocument::VectorDocument(const std::string& path, Format format, int width, int height) {
   switch (format) {
     case Format::kSvg:
       surface_ = cairo_svg_surface_create(path.c_str(), width, height);

@@ -68,7 +68,6 @@ class VectorDocument {
  private:
   cairo_surface_t* surface_ = nullptr;
   cairo_t* cr_ = nullptr;
-  Format format_;
   int pages_ = 0;
   std::string error_;
 };

@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <limits>
+#include <sstream>
 
 namespace asgard::solver {
 namespace {
@@ -40,8 +41,8 @@ std::vector<std::vector<int>> ReadsOf(const physics::EquationSystem& sys) {
     for (int b : g)
       for (int s = 0; s < physics::kBodySlots; ++s) all.push_back(sys.bodies[b].first_var + s);
     for (int b : g)
-      for (int s : {physics::kDx, physics::kDy, physics::kDz, physics::kW1, physics::kW2,
-                    physics::kW3}) {
+      for (int s :
+           {physics::kDx, physics::kDy, physics::kDz, physics::kW1, physics::kW2, physics::kW3}) {
         auto& r = reads[sys.bodies[b].first_var + s];
         r.insert(r.end(), all.begin(), all.end());
       }
@@ -130,6 +131,7 @@ bool Simulation::StepOnce() {
       failed_ = true;
       return false;
     }
+    if (!Charge(e.c)) return false;
     if (after_step) after_step(*this, e.c);
     if (failed_) return false;
     Push(e.c);
@@ -139,7 +141,79 @@ bool Simulation::StepOnce() {
   return false;
 }
 
+void Simulation::StartRun() {
+  run_steps_ = 0;
+  impulses_.assign(sys_.bodies.size(), 0);
+  last_impulse_t_.assign(sys_.bodies.size(), std::numeric_limits<double>::quiet_NaN());
+  steps_at_run_start_.resize(components_.size());
+  for (size_t c = 0; c < components_.size(); ++c)
+    steps_at_run_start_[c] = components_[c]->counters().steps;
+  if (before_run) before_run(*this);
+}
+
+double Simulation::WaveformBytes() const {
+  double bytes = 0.0;
+  for (const auto& c : components_) {
+    const Waveform& w = c->waveform();
+    // Per sample: the time, x, f and the bubble per variable, and its SampleInfo.
+    bytes += static_cast<double>(w.size()) *
+             (sizeof(double) * (1.0 + 3.0 * w.variable_count()) + sizeof(SampleInfo));
+  }
+  return bytes;
+}
+
+std::string Simulation::BodiesOf(int c) const {
+  std::vector<int> bodies;
+  for (int v : components_[c]->variables())
+    if (const int b = sys_.variables[v].body; b >= 0) bodies.push_back(b);
+  std::sort(bodies.begin(), bodies.end());
+  bodies.erase(std::unique(bodies.begin(), bodies.end()), bodies.end());
+  if (bodies.empty()) return "component " + std::to_string(c);
+  std::string names = bodies.size() == 1 ? "body " : "bodies ";
+  for (size_t k = 0; k < bodies.size(); ++k) {
+    if (k == 5) {
+      names += " and " + std::to_string(bodies.size() - k) + " more";
+      break;
+    }
+    names += (k ? ", " : "") + sys_.bodies[bodies[k]].name;
+  }
+  return names;
+}
+
+bool Simulation::Charge(int c) {
+  ++run_steps_;
+  const bool out_of_steps = budget_.steps > 0 && run_steps_ > budget_.steps;
+  const double bytes = budget_.memory_mb > 0 && (run_steps_ & 1023) == 0 ? WaveformBytes() : 0.0;
+  const bool out_of_memory = bytes > budget_.memory_mb * 1048576.0;
+  if (!out_of_steps && !out_of_memory) return true;
+  // Name the component that spent most of it: steps this run, or samples held.
+  int busiest = c;
+  double most = -1.0;
+  for (size_t k = 0; k < components_.size(); ++k) {
+    const Component& comp = *components_[k];
+    const double spent =
+        out_of_steps
+            ? static_cast<double>(comp.counters().steps -
+                                  (k < steps_at_run_start_.size() ? steps_at_run_start_[k] : 0))
+            : static_cast<double>(comp.waveform().size()) * comp.waveform().variable_count();
+    if (spent > most) most = spent, busiest = static_cast<int>(k);
+  }
+  std::ostringstream msg;
+  if (out_of_steps)
+    msg << "the run exceeded its budget of " << budget_.steps << " steps";
+  else
+    msg << "the run exceeded its memory budget (" << budget_.memory_mb << " MB of trajectories)";
+  msg << " at t=" << time_reached() << " of [" << sys_.t0 << ", " << sys_.t1 << "]; "
+      << BodiesOf(busiest) << (out_of_steps ? " took most of them" : " hold most of it")
+      << ", reaching t=" << components_[busiest]->t_end();
+  Fail(msg.str());
+  if (!components_[busiest]->variables().empty())
+    failed_variable_ = components_[busiest]->variables().front();
+  return false;
+}
+
 bool Simulation::Run(const std::function<void(double)>& progress) {
+  StartRun();
   if (options_.schedule == SolverOptions::Schedule::kSequential) {
     // Each component to the end, in dependency order (seed 5.2.4 variant 5).
     // A truncation of an earlier component restarts the sweep from it.
@@ -150,6 +224,7 @@ bool Simulation::Run(const std::function<void(double)>& progress) {
           failed_variable_ = components_[c]->failed_variable();
           return false;
         }
+        if (!Charge(static_cast<int>(c))) return false;
         if (after_step) after_step(*this, static_cast<int>(c));
         if (failed_) return false;
         for (size_t e = 0; e <= c; ++e) {
@@ -248,6 +323,28 @@ void Simulation::ChangeAt(int var, double t, Edit edit) {
 
 void Simulation::SetValueAt(int var, double t, double value) {
   ChangeAt(var, t, [&](Component& c, int local) { c.AddJump(t, local, value); });
+  ChargeImpulse(var, t);
+}
+
+long Simulation::impulses_this_run(int body) const {
+  return body >= 0 && static_cast<size_t>(body) < impulses_.size() ? impulses_[body] : 0;
+}
+
+void Simulation::ChargeImpulse(int var, double t) {
+  const int b = sys_.variables[var].body;
+  if (b < 0 || budget_.impulses_per_body <= 0 || failed_) return;
+  if (impulses_.size() != sys_.bodies.size()) {  // a jump outside Run
+    impulses_.assign(sys_.bodies.size(), 0);
+    last_impulse_t_.assign(sys_.bodies.size(), std::numeric_limits<double>::quiet_NaN());
+  }
+  if (last_impulse_t_[b] == t) return;  // another variable of the same impulse
+  last_impulse_t_[b] = t;
+  if (++impulses_[b] <= budget_.impulses_per_body) return;
+  std::ostringstream msg;
+  msg << "the run exceeded its budget of " << budget_.impulses_per_body << " impulses on body "
+      << sys_.bodies[b].name << " at t=" << t << " of [" << sys_.t0 << ", " << sys_.t1 << "]";
+  Fail(msg.str());
+  failed_variable_ = var;
 }
 
 void Simulation::HoldAt(int var, double t, double value) {

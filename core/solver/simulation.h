@@ -40,6 +40,27 @@
 
 namespace asgard::solver {
 
+// What one Run may spend.  A hostile or careless scene (a body at absurd
+// speed in a closed box, a stiff system at a tiny step) must end with an
+// error naming the time reached and the bodies involved, never run for hours
+// or exhaust memory.  0 means no limit.
+struct RunBudget {
+  // Accepted steps of all components in one Run, recomputations after
+  // truncations included (a run of the samples takes ~1e5; 5e7 is minutes).
+  long steps = 50'000'000;
+  // Velocity jumps (impacts and resting-contact events) one body may take
+  // in one Run.  The cost of a body's jumps grows faster than their number
+  // (its component re-sorts its event times at each), so this also bounds
+  // the time a run can spend on one body bouncing: 10 000 take about a
+  // minute.
+  long impulses_per_body = 10'000;
+  // Impacts of all bodies in one Run, as the collision monitor counts them
+  // (pipeline::Solve enforces it: the solver itself does not see impacts).
+  long impacts = 200'000;
+  // Waveform storage of all components, in MB (checked every 1024 steps).
+  double memory_mb = 2048;
+};
+
 class Simulation {
  public:
   Simulation(const physics::EquationSystem& system, SolverOptions options);
@@ -48,10 +69,25 @@ class Simulation {
   // Runs until every component reaches the end time.  Returns false when a
   // component fails; error() then names it, its variables and the time.
   // `progress` (may be empty) receives the least time reached, in [t0, t1].
+  // Each call may spend budget() (steps, memory) afresh; exhausting it fails
+  // the run.
   bool Run(const std::function<void(double)>& progress = {});
   const std::string& error() const { return error_; }
-  // The variable whose value stopped the run by not being finite, or -1.
+  // The variable whose value stopped the run by not being finite, or a
+  // variable of the component that spent most of an exhausted budget, or -1.
   int failed_variable() const { return failed_variable_; }
+
+  const RunBudget& budget() const { return budget_; }
+  void set_budget(const RunBudget& budget) { budget_ = budget; }
+  // Accepted steps since the current (or last) Run began.
+  long steps_this_run() const { return run_steps_; }
+  // Velocity jumps body b has taken since the current (or last) Run began.
+  long impulses_this_run(int body) const;
+  // Bytes the waveforms of all components hold.
+  double WaveformBytes() const;
+  // Names of the bodies whose variables component c holds ("b1, b2"), or
+  // "component c" when it holds none.
+  std::string BodiesOf(int c) const;
 
   // Takes one step of the component furthest behind; false when none is
   // eligible (done) or on failure.
@@ -97,6 +133,8 @@ class Simulation {
     error_ = message;
   }
 
+  // Called when Run begins (observers that keep per-run counts).
+  std::function<void(Simulation&)> before_run;
   // Called after every accepted step of a component (collision detection).
   std::function<void(Simulation&, int component)> after_step;
   // Called for each component truncated, with the time it keeps, and once
@@ -124,6 +162,12 @@ class Simulation {
   template <typename Edit>
   void ChangeAt(int var, double t, Edit edit);
   bool Eligible(int c) const;
+  // Counts an accepted step of c against the budget; false (and the run
+  // failed) once it is exhausted.
+  bool Charge(int c);
+  // Counts a jump of var at t against its body's budget of impulses.
+  void ChargeImpulse(int var, double t);
+  void StartRun();
   void Push(int c);
   void RepairQueue(const std::vector<int>& affected);
   // Recomputes the dynamic breakpoints of c and of everything downstream.
@@ -144,12 +188,17 @@ class Simulation {
     bool operator>(const Entry& o) const { return t != o.t ? t > o.t : c > o.c; }
   };
   std::priority_queue<Entry, std::vector<Entry>, std::greater<Entry>> queue_;
-  std::vector<uint64_t> stamp_;    // current stamp per component
+  std::vector<uint64_t> stamp_;  // current stamp per component
   std::vector<char> queued_;
   std::string error_;
   int failed_variable_ = -1;
   bool failed_ = false;
   int truncate_depth_ = 0;
+  RunBudget budget_;
+  long run_steps_ = 0;
+  std::vector<long> steps_at_run_start_;  // per component
+  std::vector<long> impulses_;            // per body, this run
+  std::vector<double> last_impulse_t_;    // per body: jumps at one time are one impulse
 };
 
 }  // namespace asgard::solver

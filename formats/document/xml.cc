@@ -16,6 +16,7 @@
 #include <libxml/parser.h>
 #include <libxml/tree.h>
 
+#include <algorithm>
 #include <memory>
 
 #include "formats/document/file.h"
@@ -188,6 +189,35 @@ std::string WriteXml(const Document& document) {
   return out;
 }
 
+// The first error (not a warning) libxml2 reports while this thread
+// parses (the reader resets the context it is given, so the record is
+// found through a thread-local pointer, not the context).
+struct FirstError {
+  ParseError error;
+  bool set = false;
+  static thread_local FirstError* current;
+  explicit FirstError() { current = this; }
+  ~FirstError() { current = nullptr; }
+  FirstError(const FirstError&) = delete;
+  FirstError& operator=(const FirstError&) = delete;
+  static void Record(void*, xmlErrorPtr e) {
+    if (current && !current->set && e && e->level >= XML_ERR_ERROR) current->Take(e);
+  }
+  // Falls back to `last` when no error was recorded.
+  void Use(const xmlError* last) {
+    if (!set && last) Take(last);
+    if (!set) error = ParseError{1, 1, "XML: not well-formed XML"};
+  }
+  void Take(const xmlError* e) {
+    std::string message = e->message ? e->message : "not well-formed XML";
+    while (!message.empty() && (message.back() == '\n' || message.back() == ' '))
+      message.pop_back();
+    error = ParseError{e->line > 0 ? e->line : 1, e->int2 > 0 ? e->int2 : 1, "XML: " + message};
+    set = true;
+  }
+};
+thread_local FirstError* FirstError::current = nullptr;
+
 ParseResult ParseXml(std::string_view bytes) {
   ParseResult result;
   // The writer never declares a document type.  One in the input can only
@@ -213,15 +243,19 @@ ParseResult ParseXml(std::string_view bytes) {
     result.error = ParseError{1, 1, "out of memory"};
     return result;
   }
+  // The first error is the cause; libxml2 goes on past it and its last
+  // error is often a consequence ("Extra content at the end of the
+  // document" after a bad attribute).  Errors come to this handler, not
+  // stderr.
+  FirstError first;
+  ctxt->sax->serror = &FirstError::Record;
+  ctxt->sax->initialized = XML_SAX2_MAGIC;
   std::unique_ptr<xmlDoc, DocDeleter> doc(xmlCtxtReadMemory(
       ctxt.get(), bytes.data(), static_cast<int>(bytes.size()), nullptr, nullptr,
       XML_PARSE_NONET | XML_PARSE_NOCDATA | XML_PARSE_NOERROR | XML_PARSE_NOWARNING));
   if (!doc || !ctxt->wellFormed) {
-    const xmlError* e = xmlCtxtGetLastError(ctxt.get());
-    std::string message = e && e->message ? e->message : "not well-formed XML";
-    while (!message.empty() && (message.back() == '\n' || message.back() == ' '))
-      message.pop_back();
-    result.error = ParseError{e ? e->line : 1, e && e->int2 > 0 ? e->int2 : 1, "XML: " + message};
+    first.Use(xmlCtxtGetLastError(ctxt.get()));
+    result.error = first.error;
     return result;
   }
   xmlNodePtr root = xmlDocGetRootElement(doc.get());
@@ -239,6 +273,10 @@ ParseResult ParseXml(std::string_view bytes) {
   }
   if (auto e = CheckStructure(d)) {
     result.error = *e;
+    // What is missing at the top level is missing from the ens:file element.
+    if (result.error.line < 1) result.error.line = static_cast<int>(xmlGetLineNo(root));
+    result.error.line = std::max(result.error.line, 1);
+    result.error.column = std::max(result.error.column, 1);
     return result;
   }
   result.document = std::move(d);

@@ -9,6 +9,8 @@
 #include <sstream>
 #include <string>
 
+#include "tests/common/sanitizer.h"
+
 namespace {
 
 struct Result {
@@ -144,6 +146,8 @@ TEST(Cli, AnEndlessLoopEndsWithAClearError) {
 // Running out of memory is an error message and exit status 1, not an abort
 // by an escaping std::bad_alloc (10 million frames under a 600 MB limit).
 TEST(Cli, OutOfMemoryIsAClearErrorNotASignal) {
+  if (asgard::tests::kAddressSanitizer)
+    GTEST_SKIP() << "an address-space limit cannot apply to an AddressSanitizer build";
   const auto path = TempFile("frames.al",
                              "shape_set s -desc {-sub {-sphere 1}}\n"
                              "body b -shape s -init_dpos {1 0 0}\n"

@@ -156,9 +156,25 @@ TEST(RoundTrip, LenientEscapesAndOddSpacingAreKeptExactly) {
 
 struct Bad {
   std::string text;
-  int line, column;
+  int line, column;  // column 0: not checked (libxml2's columns are approximate)
   std::string words;
 };
+
+// Each case fails to parse, at its line (and column), with its words.
+template <typename ParseFn>
+void ExpectLocated(const std::vector<Bad>& cases, ParseFn parse) {
+  for (const Bad& b : cases) {
+    auto r = parse(b.text);
+    EXPECT_FALSE(r.ok()) << b.text;
+    if (r.ok()) continue;
+    EXPECT_EQ(r.error.line, b.line) << b.text << " → " << r.error.Format();
+    if (b.column) {
+      EXPECT_EQ(r.error.column, b.column) << b.text << " → " << r.error.Format();
+    }
+    EXPECT_GE(r.error.column, 1) << r.error.Format();
+    EXPECT_NE(r.error.message.find(b.words), std::string::npos) << r.error.Format();
+  }
+}
 
 TEST(Errors, MalformedInputIsLocated) {
   const std::vector<Bad> cases = {
@@ -175,14 +191,27 @@ TEST(Errors, MalformedInputIsLocated) {
       {"DOCUMENTX\n<X></X>", 1, 9, "expected a space"},
       {"DOCUMENT X\n<X>}</X>", 2, 4, "unmatched '}'"},
       {"DOCUMENT X\n<X>\n<é>", 3, 2, "tag name"},
+      {"\n\n  DOKUMENT X\n<X></X>", 3, 3, "expected a 'DOCUMENT <TYPE>' line but found"},
+      {"DOCUMENT", 1, 9, "expected a space and the document type after DOCUMENT"},
+      {"DOCUMENT X", 1, 11, "expected the root element <X> but the file ends"},
+      {"DOCUMENT 9X\n<X></X>", 1, 10, "expected the document type but found"},
+      {"DOCUMENT X;\n<X></X>", 1, 11, "after the document type"},
+      {"DOCUMENT X\n</X>", 2, 1, "expected the root element <X> but found"},
+      {"DOCUMENT X\n<X", 2, 3, "the file ends inside the tag <X"},
+      {"DOCUMENT X\n<X></X", 2, 7, "expected '>' after </X"},
+      {"DOCUMENT X\n<X></>", 2, 6, "expected a tag name after '</'"},
+      {"DOCUMENT X\n<X><>", 2, 5, "expected a tag name after '<'"},
+      {"DOCUMENT X\n<X>\n  <A>\n  {one}\n  {two\\}</A></X>", 5, 3,
+       "unterminated text: the file ends before its closing '}'"},
+      {"DOCUMENT X\n<X><DOCUMENT>\nDOCUMENT Y <Y></Y>", 2, 4,
+       "unterminated <DOCUMENT>: the file ends before </DOCUMENT>"},
+      {"DOCUMENT X\n<X><DOCUMENT>DOCUMENT Y <Y></Y> {t}</DOCUMENT></X>", 2, 33,
+       "in <DOCUMENT> after its root element"},
+      {"DOCUMENT X\n<X><DOCUMENT>DOCUMENT Y <Z></Z></DOCUMENT></X>", 2, 25,
+       "the root element <Z> does not match the document type Y"},
+      {"DOCUMENT X\n<X>\n\n\n      <A>{x}</A>\n<B>\n</X>", 7, 1, "</X> does not close <B>"},
   };
-  for (const Bad& b : cases) {
-    auto r = Parse(b.text);
-    ASSERT_FALSE(r.ok()) << b.text;
-    EXPECT_EQ(r.error.line, b.line) << b.text << " → " << r.error.Format();
-    EXPECT_EQ(r.error.column, b.column) << b.text << " → " << r.error.Format();
-    EXPECT_NE(r.error.message.find(b.words), std::string::npos) << r.error.Format();
-  }
+  ExpectLocated(cases, [](const std::string& t) { return Parse(t); });
 }
 
 TEST(Errors, ColumnsCountCharactersNotBytes) {
@@ -216,6 +245,29 @@ TEST(Errors, XmlErrorsAreLocated) {
   auto t = ParseXml("<?xml version=\"1.0\"?><other/>");
   ASSERT_FALSE(t.ok());
   EXPECT_NE(t.error.message.find("ens:file"), std::string::npos);
+}
+
+// XML flavour: what libxml2 refuses, and well-formed XML that is not an
+// Asgard document, each at its line and column.
+TEST(Errors, XmlCatalogueIsLocated) {
+  const std::string head =
+      "<?xml version=\"1.0\"?>\n<ens:file xmlns:ens=\"urn:asgard:ensemble-document\">\n";
+  const std::vector<Bad> cases = {
+      {"", 1, 1, "Document is empty"},
+      {"<?xml version=\"1.0\"?>\n<a>\n<b></a>", 3, 0, "mismatch"},
+      {"<?xml version=\"1.0\"?>\n<a x=1/>", 2, 0, "AttValue"},
+      {"<?xml version=\"1.0\"?>\n<a>&nosuch;</a>", 2, 0, "nosuch"},
+      {"<?xml version=\"1.0\"?>\n<a>\xff\xfe</a>", 2, 0, "UTF-8"},
+      {head + "<ens:header>DOCUMENT X</ens:header>\n<X>\n<A>\n</X></ens:file>", 6, 5,
+       "Opening and ending tag mismatch: A line 5 and X"},
+      {head + "<ens:header>DOCUMENT X</ens:header>\n<Y/></ens:file>", 4, 0, "does not match"},
+      {head + "<X/></ens:file>", 3, 1, "<X> before the 'DOCUMENT <TYPE>' line"},
+      // Found by fuzz_xml: an empty ens:file was refused at line 0.
+      {head + "</ens:file>", 2, 1, "a document without its 'DOCUMENT <TYPE>' line"},
+      {head + "<ens:header>DOCUMENT X</ens:header>\n</ens:file>", 2, 1,
+       "a document without its root element"},
+  };
+  ExpectLocated(cases, [](const std::string& t) { return ParseXml(t); });
 }
 
 TEST(Files, AtomicWriteReplacesOrLeavesUntouched) {

@@ -3,9 +3,12 @@
 #include <gtest/gtest.h>
 
 #include <chrono>
+#include <cstring>
 #include <functional>
+#include <memory>
 #include <ostream>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "core/lang/lang.h"
@@ -23,8 +26,9 @@ struct BadInput {
   int line;          // expected line of the diagnostic
   int column;        // expected column, 0 = not checked
   const char* what;  // substring of the message
-  // The evaluation's time limit.  Cases about another limit get a long one so
-  // that on a loaded machine the time limit cannot be what stops them first.
+  // The evaluation's time limit.  Cases about a size or command limit get a
+  // long one so that on a loaded machine (or under a sanitizer) the time
+  // limit cannot be what stops them first.
   int time_limit_ms = 300;
 };
 
@@ -108,7 +112,10 @@ std::vector<BadInput> Catalogue() {
        kOtherLimit},
       {"ConcatPastTheValueLimit",
        "set t [string repeat x 10000000]\nset all [concat {*}[lrepeat 300 $t]]\n", 2, 0,
-       "come to more than 64 MB in all", kOtherLimit},
+       "lrepeat: the result would come to 3000000900 bytes as text", kOtherLimit},
+      {"ConcatOfManyLargeArguments",
+       "set t [string repeat x 10000000]\nset all [concat $t $t $t $t $t $t $t]\n", 2, 0,
+       "the arguments of \"concat\" come to more than 64 MB in all", kOtherLimit},
       {"JoinWithAHugeSeparator",
        "set s [string repeat x 10000000]\nset l [lrepeat 1000 a]\nset j [join $l $s]\n", 3, 0,
        "the result of \"join\" could reach", kOtherLimit},
@@ -120,7 +127,14 @@ std::vector<BadInput> Catalogue() {
        "the result of \"regsub\" could reach", kOtherLimit},
       {"NestedListsWhoseStringWouldBeHuge",
        "set l [lrepeat 4000 [lrepeat 4000 [string repeat x 1000]]]\nstring length $l\n", 1, 0,
-       "come to more than 64 MB in all", kOtherLimit},
+       "lrepeat: the result would come to 16048012000 bytes as text, above the scene limit of "
+       "64 MB",
+       kOtherLimit},
+      // Found by fuzz_scene (1.6 GB of text made inside one word's
+      // substitution, 3.3 GB in all, before any check could run).
+      {"RepeatedListSubstitutedIntoAWord",
+       "set l [lrepeat 4000 [lrepeat 4000 [string repeat x 100]]0t]s\n", 1, 0,
+       "lrepeat: the result would come to 1616016000 bytes as text", kOtherLimit},
       {"HugeFormatWidth", "set s [format %900000000s x]\n", 1, 0, "above the scene limit",
        kOtherLimit},
       {"DeeplyNestedBrackets", "set x " + std::string(300, '[') + std::string(300, ']') + "\n", 1,
@@ -142,6 +156,95 @@ std::vector<BadInput> Catalogue() {
       {"ZeroLightDirection", "lightsource -dir {0 0 0}\n", 1, 18, "zero vector"},
       {"ViewScaleZero", "view -scale 0\n", 1, 13, "must be greater than 0"},
       {"OptionNameExpected", B("body b1 -shape box 12\n"), 2, 20, "expected an option name"},
+      // Element options and their values.
+      {"RestitutionAboveOne", B("body b1 -shape box -restitution 2\n"), 2, 33,
+       "must be between 0 and 1"},
+      {"Offset2WithoutBody2", B("body a -shape box\nlink -body1 a -offset2 {1 0 0} -x 0\n"), 3, 24,
+       "needs -body2"},
+      {"GravitationalTorque", B("body a -shape box\nforce -body a -torque 1 -gravitational 1\n"), 3,
+       40, "cannot be used with -torque 1"},
+      {"TrajectoryPointOfThreeNumbers", "trajectory tr -points {{0 1 2}}\n", 1, 23,
+       "point 1 must be {t x y z}, got"},
+      {"TrajectoryUnknownState",
+       B("body b -shape box\ntrajectory tr -points {{0 0 0 0}} -body b -state vel\n"), 3, 50,
+       "expects pos, rot, dpos or drot but got 'vel'"},
+      {"TrajectoryFromWithoutBody", "trajectory tr -points {{0 0 0 0}} -from 1\n", 1, 41,
+       "needs -body"},
+      {"TrajectoryToBeforeFrom",
+       B("body b -shape box\ntrajectory tr -points {{0 0 0 0}} -body b -state pos -from 2 -to 1\n"),
+       3, 66, "must be greater than -from"},
+      {"LightsourceUnknownType", "lightsource -type spot\n", 1, 19,
+       "expects point or directional but got 'spot'"},
+      {"ViewFollowAndTrajectory",
+       B("body b -shape box\ntrajectory tr -points {{0 0 0 0}}\nview -follow b -trajectory tr\n"),
+       4, 0, "give -follow or -trajectory, not both"},
+      {"ShapeSetWithoutDesc", "shape_set s\n", 1, 1, "missing required option -desc"},
+      {"TrajectoryWithoutPointsOption", "trajectory tr\n", 1, 1, "missing required option -points"},
+      {"ForceWithoutBody", "force -y 1\n", 1, 1, "missing required option -body"},
+      {"TorqueWithoutBody", "torque -x 1\n", 1, 1, "torque: missing required option -body"},
+      {"LinkWithoutBody1", "link -x 0\n", 1, 1, "link: missing required option -body1"},
+      {"BodyWithoutName", "body\n", 1, 1, "body: missing name (body NAME ?-option value ...?)"},
+      {"BodyNamedLikeAConstant", B("body pi -shape box\n"), 2, 6,
+       "name 'pi' is reserved in expressions"},
+      {"EmptyForceExpression", B("body a -shape box\nforce -body a -y {}\n"), 3, 18,
+       "needs an expression"},
+      {"RotationOfTwoNumbers", B("body a -shape box -init_rot {1 2}\n"), 2, 29,
+       "expects a rotation vector {x y z} or a quaternion {w x y z}, got"},
+      {"MomentOfTwoNumbers", B("body a -shape box -moment {1 2}\n"), 2, 27,
+       "expects 1, 3 or 9 numbers, got 2"},
+      {"VectorThatIsNotAList", B("body a -shape box -init_pos \"\\{1 2 3\"\n"), 2, 29,
+       "expects a list of numbers but got"},
+      // Shape descriptions.
+      {"FaceOfTwoPoints", "shape_set s -desc {-face {{0 0 0} {1 0 0}}}\n", 1, 19,
+       "a -face needs at least 3 points, got 2"},
+      {"BoxSideZero", "shape_set s -desc {-sub {-box {1 0 1}}}\n", 1, 19,
+       "-box side lengths must be greater than 0"},
+      {"NestedSub", "shape_set s -desc {-sub {-sub {-sphere 1}}}\n", 1, 19,
+       "-sub cannot be nested"},
+      {"DescKeyWithoutValue", "shape_set s -desc {-sub {-sphere}}\n", 1, 19,
+       "key '-sphere' needs a value"},
+      {"FaceColorWithoutValue", "shape_set s -desc {-face {{0 0 0} {1 0 0} {0 1 0} -color}}\n", 1,
+       19, "-face: -color needs a value"},
+      // Tcl commands that build far more than their arguments hold.
+      {"SplitPastTheElementLimit", "set s [string repeat \"x,\" 8000000]\nset l [split $s ,]\n", 2,
+       1, "the result of \"split\" could have 8000001 elements, above the scene limit of 4194304",
+       kOtherLimit},
+      {"SplitIntoCharactersPastTheElementLimit",
+       "set s [string repeat ab 3000000]\nset l [split $s {}]\n", 2, 1,
+       "the result of \"split\" could have 6000001 elements", kOtherLimit},
+      {"RegexpAllInlinePastTheElementLimit",
+       "set s [string repeat x 16000000]\nset m [regexp -all -inline . $s]\n", 2, 1,
+       "the result of \"regexp\" could have 16000001 elements", kOtherLimit},
+      {"RegexpAllInlineWithGroups",
+       "set s [string repeat x 2000000]\nset m [regexp -all -inline -- {(.)(.)} $s]\n", 2, 1,
+       "the result of \"regexp\" could have 6000003 elements", kOtherLimit},
+      {"ListRepeatOfTwoValuesPastTheElementLimit", "set x [lrepeat 3000000 a b]\n", 1, 8,
+       "lrepeat: result of 6000000 elements is above the scene limit", kOtherLimit},
+      {"BinaryFormatHugeCount", "set x [binary format a900000000 x]\n", 1, 1,
+       "field width is above the scene limit", kOtherLimit},
+      {"FormatHugeStarWidth", "set x [format %*s 900000000 x]\n", 1, 1,
+       "field width is above the scene limit", kOtherLimit},
+      {"StringCatPastTheCommandLimit",
+       "set s [string repeat x 16000000]\nset t [string cat $s $s $s $s $s]\n", 2, 1,
+       "the arguments of \"string\" come to more than 64 MB in all", kOtherLimit},
+      {"ListExpansionPastTheCommandLimit",
+       "set l [lrepeat 3500000 xxxxxxxxxxxxxxx]\nset m [list {*}$l {*}$l]\n", 2, 1,
+       "the arguments of \"list\" come to more than 64 MB in all", kOtherLimit},
+      {"LmapPastTheCommandLimit",
+       "set l [lrepeat 200000 a]\nset m [lmap x $l {string length $x}]\n", 2, 0,
+       "scene exceeded its command limit (100000 commands)", kOtherLimit},
+      {"ExponentTooLarge", "set x [expr {10**1000000000}]\n", 1, 8, "exponent too large"},
+      {"DivisionByZero", "set x [expr {1/0}]\n", 1, 8, "divide by zero"},
+      // Commands a safe interpreter does not have.
+      {"SocketIsUnsafe", "socket localhost 80\n", 1, 1, "invalid command name \"socket\""},
+      {"SourceIsUnsafe", "source /etc/passwd\n", 1, 1, "invalid command name \"source\""},
+      {"ExitIsUnsafe", "exit 3\n", 1, 1, "invalid command name \"exit\""},
+      {"FileIsUnsafe", "file delete x\n", 1, 1, "invalid command name \"file\""},
+      {"LoadIsUnsafe", "load libx.so\n", 1, 1, "invalid command name \"load\""},
+      {"AfterIsUnavailable", "after 100000\n", 1, 1, "invalid command name \"after\""},
+      {"GlobIsUnsafe", "glob *\n", 1, 1, "invalid command name \"glob\""},
+      {"CdIsUnsafe", "cd /\n", 1, 1, "invalid command name \"cd\""},
+      {"EncodingIsUnsafe", "encoding system\n", 1, 1, "invalid command name \"encoding\""},
   };
 }
 
@@ -211,6 +314,21 @@ TEST(LangLimits, AValuePastTclsMaximumSizeIsAnErrorNotAnAbort) {
   // The next evaluation runs in fresh interpreters as usual.
   Scene next = Evaluate("shape_set b -desc {-sub {-sphere 1}}\n", limits);
   EXPECT_FALSE(next.has_errors());
+}
+
+// The split bound counts separators exactly: a long string with few of
+// them (or a regexp without -inline) is not refused.
+TEST(LangLimits, LongStringsWithFewPartsStillSplitAndMatch) {
+  EvalLimits limits;
+  limits.time_limit_ms = 20000;
+  Scene s = Evaluate(
+      "set s [string repeat x 6000000]\n"
+      "if {[llength [split \"$s,a,b\" ,]] != 3} { error \"split gave the wrong count\" }\n"
+      "if {[regexp -all x $s] != 6000000} { error \"regexp gave the wrong count\" }\n"
+      "shape_set b -desc {-sub {-sphere 1}}\n",
+      limits);
+  EXPECT_FALSE(s.has_errors()) << (s.diagnostics.empty() ? "" : s.diagnostics[0].message);
+  EXPECT_EQ(s.shape_sets.size(), 1u);
 }
 
 // A scene with one error: evaluation reports it, at `line`, and goes on
@@ -285,6 +403,29 @@ TEST(LangRecovery, ManyErrorsAreCapped) {
   Scene s = Evaluate(text);
   EXPECT_LE(s.diagnostics.size(), 201u);
   EXPECT_GE(s.diagnostics.size(), 200u);
+}
+
+// fuzz_scene once saw Tcl read past the end of a scene held in a buffer of
+// exactly its size (AddressSanitizer: heap-buffer-overflow in
+// Tcl_NewStringObj under Tcl_EvalEx; the input did not fail again alone, see
+// docs/fuzzing.md).  Evaluate now hands Tcl a NUL-terminated copy.  Each
+// text here sits in a buffer of exactly its size and ends inside an
+// unfinished word; under AddressSanitizer a read past it fails the test.
+TEST(LangRecovery, TextsThatEndWithoutANulAreNotReadPastTheirEnd) {
+  const std::pair<std::string, int> cases[] = {
+      {"set x \"abc", 1},
+      {"set y {abc", 1},
+      {"set z [list a", 1},
+      {"body b1 -shape nope", 1},
+      {"set w \"a\n\"\nset v \"\n", 3},
+  };
+  for (const auto& [text, line] : cases) {
+    std::unique_ptr<char[]> exact(new char[text.size()]);
+    std::memcpy(exact.get(), text.data(), text.size());
+    Scene s = Evaluate(std::string_view(exact.get(), text.size()));
+    ASSERT_TRUE(s.has_errors()) << text;
+    EXPECT_EQ(s.diagnostics[0].span.line, line) << text;
+  }
 }
 
 TEST(LangRecovery, EmptyAndCommentOnlyScenesAreFine) {
