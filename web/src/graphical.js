@@ -588,6 +588,12 @@ export class GraphicalViewer {
       this.showLabel(this.describe(h));
     });
     this.canvas.addEventListener('pointermove', (ev) => {
+      if (!this.dragging && this.mode) {
+        // Waiting for clicks on bodies: the body under the pointer, not handles.
+        const b = this.pickBody(ev);
+        this.showLabel(b ? `${b.name} {${b.local.join(' ')}}` : '');
+        return;
+      }
       if (!this.dragging) {
         const h = this.pick(ev);
         this.canvas.style.cursor = h ? (h.editable ? 'grab' : 'not-allowed') : '';
@@ -654,9 +660,7 @@ export class GraphicalViewer {
       m.picks.push({ name: null, world: p, local: null, point: [p.x, p.y, p.z].map((v) => round(v)) });
     } else return;
     if (m.picks.length < m.count) { this.ui.prompt(m.prompts[m.picks.length]); return; }
-    this.mode = null;
-    this.canvas.style.cursor = '';
-    this.ui.prompt('');
+    this.cancelPick();
     m.done(m.picks);
   }
 
@@ -672,6 +676,7 @@ export class GraphicalViewer {
     this.mode = null;
     this.canvas.style.cursor = '';
     this.ui.prompt('');
+    this.showLabel('');
   }
 
   select(name) {
