@@ -321,6 +321,15 @@ json Hub::Handle(const std::string& method, const json& params,
                {"view", params.value("view", "")}});
     return r;
   }
+  if (method == "create" || method == "delete") {
+    // A new element's command (or one removed) through the session, so
+    // that undo covers it; then as an update.
+    json r = method == "create" ? Call("create", {{"command", params.at("command")}})
+                                : Call("delete", {{"element", params.at("element")}});
+    json out = after_text_change(json::array());
+    out["edits"] = r["edits"];
+    return out;
+  }
   if (method == "update") {
     if (!params.contains("text") || !params["text"].is_string())
       throw std::runtime_error("update needs a text");

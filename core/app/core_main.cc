@@ -297,6 +297,8 @@ class Slave {
     }
     if (method == "frame") return Frame(params);
     if (method == "edit") return Edit(params);
+    if (method == "create") return Create(params);
+    if (method == "delete") return Delete(params);
     if (method == "undo" || method == "redo") {
       if (!session_) throw RpcError{kSceneError, "no scene is loaded"};
       const bool done = method == "undo" ? session_->Undo() : session_->Redo();
@@ -350,7 +352,32 @@ class Slave {
       if (!v.is_number()) throw RpcError{kInvalidParams, "invalid params: values must be numbers"};
       values.push_back(v.get<double>());
     }
-    const auto r = session_->SetParameter(params["element"], params["param"], values);
+    return Edited(session_->SetParameter(params["element"], params["param"], values));
+  }
+
+  // A new element: {command} (one well-formatted command, inserted after the
+  // last command of its kind) → the text patches and the new text, as edit.
+  json Create(const json& params) {
+    if (!session_) throw RpcError{kSceneError, "no scene is loaded"};
+    if (!params.contains("command") || !params["command"].is_string())
+      throw RpcError{kInvalidParams, "invalid params: create needs a command"};
+    const std::string command = params["command"];
+    if (command.find_first_not_of(" \t") == std::string::npos ||
+        command.find('\n') != std::string::npos)
+      throw RpcError{kInvalidParams, "invalid params: create takes one command on one line"};
+    return Edited(session_->CreateElement(command));
+  }
+
+  // An element's command removed: {element} (a name or kind#index).
+  json Delete(const json& params) {
+    if (!session_) throw RpcError{kSceneError, "no scene is loaded"};
+    if (!params.contains("element") || !params["element"].is_string())
+      throw RpcError{kInvalidParams, "invalid params: delete needs an element"};
+    return Edited(session_->DeleteElement(params["element"]));
+  }
+
+  // The answer to a graphical edit, creation or deletion.
+  json Edited(const session::EditResult& r) {
     if (!r.ok) throw RpcError{kSceneError, r.error};
     json edits = json::array();
     for (const auto& e : r.edits)

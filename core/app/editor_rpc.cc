@@ -3,6 +3,7 @@
 
 #include <cmath>
 
+#include "core/physics/trajectory.h"
 #include "core/pipeline/pipeline.h"
 #include "core/render/sampler.h"
 #include "core/session/session.h"
@@ -107,7 +108,7 @@ json Meshes(const render::SceneSampler& sampler) {
   return {{"ok", true}, {"bodies", std::move(bodies)}};
 }
 
-json Poses(const render::SceneSampler& sampler) {
+json Poses(const render::SceneSampler& sampler, const session::Session* session) {
   const std::vector<double> times = sampler.FrameTimes();
   json names = json::array();
   for (const auto& b : sampler.bodies()) names.push_back(b.name);
@@ -126,6 +127,16 @@ json Poses(const render::SceneSampler& sampler) {
   }
   json rounded = json::array();
   for (double t : times) rounded.push_back(Round(t));
+  // Each trajectory's value at the frame times: the curve a viewer draws when
+  // it cannot read the knots itself (and against which its own is checked).
+  json trajectories = json::array();
+  if (session)
+    for (const auto& tr : session->scene().trajectories) {
+      const physics::TrajectoryCurve curve(tr.knots);
+      json values = json::array();
+      for (double t : times) values.push_back(Vec(curve.Value(t)));
+      trajectories.push_back({{"name", tr.name}, {"values", std::move(values)}});
+    }
   return {{"ok", true},
           {"t0", sampler.t0()},
           {"t1", sampler.t1()},
@@ -133,7 +144,8 @@ json Poses(const render::SceneSampler& sampler) {
           {"times", std::move(rounded)},
           {"bodies", std::move(names)},
           {"poses", std::move(frames)},
-          {"forces", std::move(forces)}};
+          {"forces", std::move(forces)},
+          {"trajectories", std::move(trajectories)}};
 }
 
 json Refused(const std::string& why) { return {{"ok", false}, {"error", why}}; }
@@ -147,7 +159,7 @@ std::optional<json> Dispatch(const std::string& method, const json& /*params*/,
   if (method == "meshes")
     return sampler ? Meshes(*sampler) : Refused("the scene has not been simulated");
   if (method == "poses")
-    return sampler ? Poses(*sampler) : Refused("the scene has not been simulated");
+    return sampler ? Poses(*sampler, session) : Refused("the scene has not been simulated");
   return std::nullopt;
 }
 

@@ -12,7 +12,8 @@
 //                      {vertices: [x y z …], triangles: [i j k …]}, color]}]}
 //   poses {}        → {t0, t1, frame_rate, times: [...], bodies: [names],
 //                      poses: [[x y z qx qy qz qw per body] per frame],
-//                      forces: [[[fx fy fz] | null per scene force] per frame]}
+//                      forces: [[[fx fy fz] | null per scene force] per frame],
+//                      trajectories: [{name, values: [[x y z] per frame]}]}
 //
 // meshes and poses need a successful simulate; before it they answer
 // {ok: false, error}.

@@ -171,6 +171,7 @@ EditResult Session::SetParameter(const std::string& element, const std::string& 
       replacement = body;
     edits.push_back(Minimal(text_, w->span.begin, w->span.end, replacement));
   }
+  pending_key_ = element + '\0' + param;
   return ApplyEdits(std::move(edits));
 }
 
@@ -183,7 +184,8 @@ EditResult Session::CreateElement(const std::string& command) {
   int at = static_cast<int>(text_.size());
   bool found = false;
   for (const ElementRef& e : Elements(scene_)) {
-    if (scene::ElementKindName(e.kind) != kind || e.base->run_count != 1 || !e.base->command.known())
+    if (scene::ElementKindName(e.kind) != kind || e.base->run_count != 1 ||
+        !e.base->command.known())
       continue;
     if (!found || e.base->command.end > at) at = e.base->command.end;
     found = true;
@@ -218,12 +220,13 @@ EditResult Session::DeleteElement(const std::string& element) {
   int line_start = begin;
   while (line_start > 0 && text_[line_start - 1] != '\n') --line_start;
   size_t line_end = text_.find('\n', end);
-  const bool alone = text_.find_first_not_of(" \t", line_start) == static_cast<size_t>(begin) &&
-                     (line_end == std::string::npos ||
-                      text_.find_first_not_of(" \t;", end) >= line_end);
+  const bool alone =
+      text_.find_first_not_of(" \t", line_start) == static_cast<size_t>(begin) &&
+      (line_end == std::string::npos || text_.find_first_not_of(" \t;", end) >= line_end);
   if (alone) {
     begin = line_start;
-    end = line_end == std::string::npos ? static_cast<int>(text_.size()) : static_cast<int>(line_end) + 1;
+    end = line_end == std::string::npos ? static_cast<int>(text_.size())
+                                        : static_cast<int>(line_end) + 1;
   }
   TextEdit edit;
   edit.begin = begin;
@@ -233,9 +236,8 @@ EditResult Session::DeleteElement(const std::string& element) {
 
 EditResult Session::ApplyEdits(std::vector<TextEdit> edits) {
   EditResult result;
-  std::sort(edits.begin(), edits.end(), [](const TextEdit& a, const TextEdit& b) {
-    return a.begin < b.begin;
-  });
+  std::sort(edits.begin(), edits.end(),
+            [](const TextEdit& a, const TextEdit& b) { return a.begin < b.begin; });
   std::string next = text_;
   for (auto it = edits.rbegin(); it != edits.rend(); ++it)
     next.replace(it->begin, it->end - it->begin, it->text);

@@ -88,10 +88,19 @@ std::vector<ElementChange> Session::Adopt(const std::string& text, bool record) 
   text_ = text;
   scene_ = std::move(next);
   if (record) {
-    history_.resize(history_index_ + 1);
-    history_.push_back(text_);
-    ++history_index_;
+    // Another step of the same parameter's drag replaces its entry.
+    const bool same_drag = !pending_key_.empty() && pending_key_ == open_key_ &&
+                           history_index_ > 0 && history_index_ + 1 == history_.size();
+    if (same_drag) {
+      history_[history_index_] = text_;
+    } else {
+      history_.resize(history_index_ + 1);
+      history_.push_back(text_);
+      ++history_index_;
+    }
   }
+  open_key_ = record ? pending_key_ : std::string();
+  pending_key_.clear();
   for (auto& [id, view] : views_) {
     view->TextChanged(edits, text_);
     view->SceneChanged(changes);
@@ -110,6 +119,7 @@ void Session::FullRun(const std::function<void(double)>& progress) {
 }
 
 bool Session::Simulate(const std::function<void(double)>& progress) {
+  open_key_.clear();  // a drag ends with a simulation
   const auto start = std::chrono::steady_clock::now();
   stats_ = {};
   bool static_moved = false;
@@ -149,8 +159,7 @@ bool Session::Simulate(const std::function<void(double)>& progress) {
   }
   dirty_bodies_.clear();
   structure_dirty_ = false;
-  stats_.seconds =
-      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  stats_.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   for (auto& [id, view] : views_) view->Simulated();
   return run_ && run_->ok;
 }

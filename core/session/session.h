@@ -26,7 +26,9 @@
 //   inputs are unchanged (carry.cc).  Either way the result equals a
 //   from-scratch run bit for bit.
 // * Undo and redo cover text and graphical edits alike (they are the same
-//   thing: a new text).
+//   thing: a new text).  Consecutive graphical edits of one parameter with
+//   nothing in between — the steps of one handle drag — are one undo step;
+//   a Simulate (the drag's end) or any other change closes it.
 #pragma once
 
 #include <functional>
@@ -68,7 +70,7 @@ struct Parameter {
   std::string value;    // its text
   scene::SourceSpan span;
   bool editable = false;
-  std::string reason;   // why not, when not
+  std::string reason;  // why not, when not
 };
 
 // An element as a graphical view addresses it, and whether its command can be
@@ -89,7 +91,7 @@ class SessionView {
 };
 
 struct SimulateStats {
-  bool rebuilt = false;      // equations formed anew (not incremental)
+  bool rebuilt = false;  // equations formed anew (not incremental)
   int components = 0;
   int components_reset = 0;  // restarted from t0 (directly or as readers)
   long steps = 0;            // steps this call took
@@ -160,6 +162,9 @@ class Session {
   size_t history_index_ = 0;
   std::vector<std::pair<int, SessionView*>> views_;
   std::vector<TextEdit> pending_edits_;  // the edits of a graphical change
+  // The parameter ("element\0param") of the graphical edit in progress and
+  // of the one that made the newest history entry (empty: none open).
+  std::string pending_key_, open_key_;
   int next_view_ = 1;
 };
 

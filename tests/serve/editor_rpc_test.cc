@@ -78,6 +78,27 @@ TEST(EditorRpc, MeshesGiveCentroidsAndPosesGiveEachForceAtEachFrame) {
   }
 }
 
+TEST(EditorRpc, PosesSampleEachTrajectoryAtEachFrame) {
+  // Two knots: a straight line at constant speed, extrapolated linearly
+  // beyond t = 0.5 (the curve the viewer draws for points it cannot read).
+  const std::string text = kScene + "trajectory tr -points [list {0 1 0 0} {0.5 2 1 0}]\n";
+  session::Session s(text);
+  pipeline::Run run = pipeline::Simulate(text);
+  ASSERT_TRUE(run.ok) << run.solver_error;
+  render::SceneSampler sampler(run.scene, *run.equations, *run.simulation);
+  const json poses = *Dispatch("poses", json::object(), &s, &sampler);
+  ASSERT_EQ(poses["trajectories"].size(), 1u);
+  const json& tr = poses["trajectories"][0];
+  EXPECT_EQ(tr["name"], "tr");
+  ASSERT_EQ(tr["values"].size(), poses["times"].size());
+  for (size_t k = 0; k < poses["times"].size(); ++k) {
+    const double t = poses["times"][k].get<double>();
+    EXPECT_NEAR(tr["values"][k][0].get<double>(), 1 + 2 * t, 2e-6);
+    EXPECT_NEAR(tr["values"][k][1].get<double>(), 2 * t, 2e-6);
+    EXPECT_NEAR(tr["values"][k][2].get<double>(), 0.0, 1e-12);
+  }
+}
+
 TEST(EditorRpc, MotionMethodsRefuseBeforeASimulation) {
   const json r = *Dispatch("poses", json::object(), nullptr, nullptr);
   EXPECT_FALSE(r["ok"].get<bool>());

@@ -55,11 +55,13 @@ TEST(GraphicalEdit, AnOptionNotWrittenYetIsAppendedToItsCommand) {
 }
 
 TEST(GraphicalEdit, ForceVectorsAndOffsetsBecomeTheirWords) {
-  Session s(std::string(kBall) + "body b1 -shape ball\nforce -body b1 -x 0 -y -1 -z 0 -offset {0 0.5 0}\n");
+  Session s(std::string(kBall) +
+            "body b1 -shape ball\nforce -body b1 -x 0 -y -1 -z 0 -offset {0 0.5 0}\n");
   ASSERT_TRUE(s.SetParameter("force#0", "vector", {0, -9.81, 0}).ok);
   ASSERT_TRUE(s.SetParameter("force#0", "offset", {0.5, 0.5, 0}).ok);
-  EXPECT_EQ(s.text(), std::string(kBall) +
-                          "body b1 -shape ball\nforce -body b1 -x 0 -y -9.81 -z 0 -offset {0.5 0.5 0}\n");
+  EXPECT_EQ(s.text(),
+            std::string(kBall) +
+                "body b1 -shape ball\nforce -body b1 -x 0 -y -9.81 -z 0 -offset {0.5 0.5 0}\n");
 }
 
 TEST(GraphicalEdit, TrajectoryKnotsKeepTheirListShape) {
@@ -124,7 +126,8 @@ TEST(Editability, ElementsSayWhetherTheirCommandCanTakeANewOption) {
 Change ChangeOf(const std::vector<ElementChange>& changes, scene::ElementKind kind,
                 const std::string& name, int new_index = -1) {
   for (const auto& c : changes)
-    if (c.kind == kind && c.name == name && (new_index < 0 || c.new_index == new_index)) return c.change;
+    if (c.kind == kind && c.name == name && (new_index < 0 || c.new_index == new_index))
+      return c.change;
   ADD_FAILURE() << "no change record for " << name;
   return Change::kUnchanged;
 }
@@ -148,7 +151,8 @@ TEST(ChangeAnalysis, RenameReorderAddAndDeleteAreClassified) {
                     "body c -shape ball\n");
   EXPECT_EQ(ChangeOf(ch, scene::ElementKind::kBody, "z"), Change::kRemoved);
   EXPECT_EQ(ChangeOf(ch, scene::ElementKind::kBody, "c"), Change::kAdded);
-  ch = s.UpdateText(std::string(kBall) + "body b -shape ball -init_pos {2 0 0}\nbody c -shape ball\n");
+  ch = s.UpdateText(std::string(kBall) +
+                    "body b -shape ball -init_pos {2 0 0}\nbody c -shape ball\n");
   EXPECT_EQ(ChangeOf(ch, scene::ElementKind::kBody, "b"), Change::kModified);
 }
 
@@ -184,8 +188,8 @@ std::string Balls(int n) {
   std::string s = kBall;
   for (int i = 0; i < n; ++i)
     s += "body b" + std::to_string(i) + " -shape ball -init_pos {" + std::to_string(3 * i) +
-         " 0 0} -init_dpos {0 1 0}\nforce -body b" + std::to_string(i) +
-         " -x 0 -y {-9.81 * b" + std::to_string(i) + ".mass} -z {-b" + std::to_string(i) + ".z}\n";
+         " 0 0} -init_dpos {0 1 0}\nforce -body b" + std::to_string(i) + " -x 0 -y {-9.81 * b" +
+         std::to_string(i) + ".mass} -z {-b" + std::to_string(i) + ".z}\n";
   return s + "simulator -finish 2\n";
 }
 
@@ -315,6 +319,35 @@ TEST(Undo, UndoingAGraphicalEditRestoresTextAndResultsExactly) {
   ASSERT_TRUE(s.Undo());
   EXPECT_EQ(s.text(), base);
   EXPECT_FALSE(s.Undo());
+}
+
+TEST(Undo, TheStepsOfOneDragAreOneUndoStep) {
+  const std::string base = Balls(3);
+  Session s(base);
+  ASSERT_TRUE(s.Simulate());
+  // A drag: many edits of one parameter, then the simulation at its end.
+  for (double x : {1.0, 1.5, 2.0, 2.5}) ASSERT_TRUE(s.SetParameter("b1", "init_pos", {x, 0, 0}).ok);
+  ASSERT_TRUE(s.Simulate());
+  const std::string after_first = s.text();
+  // A second drag of the same handle is its own step, and so is a drag of
+  // another parameter right after it (no simulation between).
+  for (double x : {3.0, 3.5}) ASSERT_TRUE(s.SetParameter("b1", "init_pos", {x, 0, 0}).ok);
+  const std::string after_second = s.text();
+  ASSERT_TRUE(s.SetParameter("b1", "init_dpos", {0, 1, 0}).ok);
+  ASSERT_TRUE(s.SetParameter("b1", "init_dpos", {0, 2, 0}).ok);
+  ASSERT_TRUE(s.Undo());
+  EXPECT_EQ(s.text(), after_second);
+  ASSERT_TRUE(s.Undo());
+  EXPECT_EQ(s.text(), after_first);
+  ASSERT_TRUE(s.Undo());
+  EXPECT_EQ(s.text(), base);
+  EXPECT_FALSE(s.Undo());
+  // After an undo the next edit starts a new step (redo history dropped).
+  ASSERT_TRUE(s.SetParameter("b1", "init_pos", {9, 0, 0}).ok);
+  ASSERT_TRUE(s.SetParameter("b1", "init_pos", {9.5, 0, 0}).ok);
+  EXPECT_FALSE(s.CanRedo());
+  ASSERT_TRUE(s.Undo());
+  EXPECT_EQ(s.text(), base);
 }
 
 struct RecordingView : SessionView {

@@ -85,6 +85,14 @@ try {
   check(r.data.toString('latin1').includes('"code":-32600'), 'a message that is not a request is answered with invalid request');
   r = await exchange([upgrade(), frame('{"id":5,"method":"no_such","params":{}}')], { idle: 8000 });
   check(r.data.toString('latin1').includes('unknown method'), 'an unknown method is answered with an error');
+  // Element creation refuses what is not one command on one line, and a
+  // create without a command, with an error rather than a changed text.
+  r = await exchange([upgrade(), frame(JSON.stringify({ id: 6, method: 'create', params: { command: 'body x -shape ss1\nbody y -shape ss1' } }))], { idle: 8000 });
+  check(r.data.toString('latin1').includes('one command on one line'), 'a multi-line create is refused with a reason');
+  r = await exchange([upgrade(), frame('{"id":7,"method":"create","params":{}}')]);
+  check(/\{"error":\{[^}]*\},"id":7\}/.test(r.data.toString('latin1')), 'a create without a command is answered with an error');
+  r = await exchange([upgrade(), frame('{"id":8,"method":"delete","params":{"element":"no_such_body"}}')], { idle: 3000 });
+  check(r.data.toString('latin1').includes("no element 'no_such_body'"), 'deleting a missing element says so');
   r = await exchange([upgrade(), frame('x'.repeat(2 << 20))]);
   text = r.data.toString('latin1');
   // A close frame (1009: message too big) — or, when the server's close

@@ -3,11 +3,14 @@
 // and zoom need no server round trip.  Handles (handles.js, seed 4.2.3) edit
 // initial positions, rotations, velocities, constant forces, link ends and
 // lights: dragging one changes its literal through the session while
-// dragging, and re-simulates on release.  Display styles (shaded, lines) and
-// element-type toggles choose what is drawn.
+// dragging, and re-simulates on release.  A trajectory is drawn as its curve
+// with a handle per control point (seed Figure 4.4).  Display styles (shaded,
+// lines) and element-type toggles choose what is drawn.  A click on a body
+// selects it; element creation asks for clicks on bodies (startPick).
 import * as THREE from 'three';
 import { OrbitControls } from 'three/examples/jsm/controls/OrbitControls.js';
 import { GROUPS, Handle, ParameterIndex, numbers, round, rotationLiteral, rotationOf } from './handles.js';
+import { TrajectoryCurve, knotsText, parseKnots } from './trajectory.js';
 
 const ZERO = [0, 0, 0];
 
@@ -31,14 +34,19 @@ export class GraphicalViewer {
     this.handles = [];         // Handle (handles.js)
     this.handleGroup = new THREE.Group();
     this.linkLines = new THREE.Group();
-    this.scene.add(this.handleGroup, this.linkLines);
+    this.paths = new THREE.Group();  // trajectories' curves
+    this.selectionBox = new THREE.BoxHelper(undefined, 0xff8000);
+    this.selectionBox.visible = false;
+    this.scene.add(this.handleGroup, this.linkLines, this.paths, this.selectionBox);
+    this.selected = null;  // the selected body's name
+    this.mode = null;      // a creation waiting for clicks (startPick)
     this.index = new ParameterIndex([], []);
     this.simValues = new Map();  // "element.param" → the value the shown motion was simulated with
     this.scales = { velocity: 1, angvel: 1, force: 1 };
     this.handleSize = 0.3;
     this.radius = 10;
     this.style = 'shaded';
-    this.shown = { bodies: true, handles: true, velocities: true, links: true, forces: true, lights: true };
+    this.shown = { bodies: true, handles: true, velocities: true, links: true, forces: true, lights: true, trajectories: false };
     this.poses = null;
     this.t = 0;
     this.frame = 0;
@@ -81,6 +89,8 @@ export class GraphicalViewer {
           geometry.computeVertexNormals();
         }
         const mesh = new THREE.Mesh(geometry, material);
+        // A hit on a sphere's polygons is moved to the true surface (localPoint).
+        if (p.sphere) mesh.userData.sphere = { center: new THREE.Vector3(...p.center), radius: p.radius };
         // Lines style: a sphere's edges are its wireframe's, a hull's its creases.
         const edges = new THREE.LineSegments(
           p.sphere ? new THREE.WireframeGeometry(new THREE.SphereGeometry(p.radius, 12, 8).translate(p.center[0], p.center[1], p.center[2]))
@@ -123,6 +133,16 @@ export class GraphicalViewer {
   // Another view (or this one) dragged a handle: the new value.
   parameterEdited(element, param, values) {
     const p = this.index.get(element, param);
+    if (param === 'points') {
+      const knots = [];
+      for (let k = 0; k + 3 < values.length; k += 4) knots.push(values.slice(k, k + 4));
+      if (p) p.value = knotsText(knots);
+      for (const h of this.handles)
+        if (h.kind === 'knot' && h.element === element && h !== this.dragging && knots[h.knot]) h.value = knots[h.knot].slice(1);
+      this.placeHandles();
+      this.draw();
+      return;
+    }
     if (p) p.value = values.join(' ');
     const h = this.handles.find((x) => x.element === element && x.param === param);
     if (!h || this.dragging === h || !h.editable) return;
@@ -173,6 +193,7 @@ export class GraphicalViewer {
     this.resetPending = false;
     this.handleGroup.clear();
     this.linkLines.clear();
+    this.paths.clear();
     this.handles = [];
     const add = (spec) => {
       const h = new Handle(spec, this.handleSize);
@@ -277,8 +298,42 @@ export class GraphicalViewer {
           return [v.x, v.y, v.z].map((x) => round(x));
         } });
     });
+    ix.ofKind('trajectory').forEach((element) => this.addTrajectory(element, add));
     this.applyVisibility();
     this.placeHandles();
+  }
+
+  // A trajectory (seed Figure 4.4): its curve, and a handle per control
+  // point when -points is a literal list the session can rewrite.  Dragging
+  // one moves that point in the screen plane (its time is kept) and sends
+  // the whole list.  A trajectory whose points are not a literal is drawn
+  // from the core's samples of it.
+  addTrajectory(element, add) {
+    const ix = this.index, e = ix.elements.get(element), p = ix.get(element, 'points');
+    const knots = p ? parseKnots(p.value) : null;
+    const reason = !e.editable ? e.reason : !p ? 'it has no -points' : !p.editable ? p.reason
+      : !knots ? 'its -points is not a list of {t x y z} with increasing times' : '';
+    const line = new THREE.Line(new THREE.BufferGeometry(), new THREE.LineBasicMaterial({ color: reason ? 0x808080 : 0x3060d0 }));
+    line.userData.element = element;
+    const handles = [];
+    (knots || []).forEach((k, i) => {
+      const h = add({ kind: 'knot', element, param: 'points', id: `${element}.points#${i}`, knot: i, t: k[0],
+        value: k.slice(1), editable: !reason, reason,
+        where: () => new THREE.Vector3(...h.value),
+        valueFrom: (q, d) => d.value.map((v, c) => round(v + q.getComponent(c) - d.point.getComponent(c))),
+        payload: () => handles.flatMap((x) => [x.t, ...x.value]) });
+      handles.push(h);
+    });
+    line.userData.knots = handles;
+    this.paths.add(line);
+  }
+
+  // The curve of a trajectory as drawn: through its handles, else the core's samples.
+  pathPoints(line) {
+    const handles = line.userData.knots;
+    if (handles.length) return new TrajectoryCurve(handles.map((h) => [h.t, ...h.value])).sample();
+    const core = (this.poses.trajectories || []).find((x) => x.name === line.userData.element);
+    return core ? core.values : [];
   }
 
   bodyHandleOf(element, param) { return this.handles.find((h) => h.element === element && h.param === param) || {}; }
@@ -295,17 +350,34 @@ export class GraphicalViewer {
   onSurface(body, p, d, ev) {
     const b = this.bodies.get(body);
     let world = p;
+    let mesh = null;
     if (!ev.shiftKey) {
       const hit = this.raycaster.intersectObjects(b.meshes, false)[0];
       world = hit ? hit.point : d.last || d.point;
+      mesh = hit ? hit.object : d.lastMesh || null;
     }
     d.last = world.clone();
-    const local = world.clone().sub(b.group.position).applyQuaternion(b.group.quaternion.clone().invert()).add(b.centroid);
+    d.lastMesh = mesh;
+    return this.localPoint(b, world, mesh);
+  }
+
+  // A world point in a body's shape coordinates (rounded), on the true
+  // surface when `mesh` is one of its spheres.
+  localPoint(b, world, mesh) {
+    const local = world.clone().sub(b.group.position).applyQuaternion(b.group.quaternion.clone().invert());
+    const sphere = mesh && mesh.userData.sphere;
+    if (sphere) {
+      const r = local.clone().sub(sphere.center);
+      if (r.lengthSq() > 0) local.copy(sphere.center).add(r.setLength(sphere.radius));
+    }
+    local.add(b.centroid);
     return [local.x, local.y, local.z].map((v) => round(v));
   }
 
   placeHandles() {
     for (const h of this.handles) h.place();
+    for (const line of this.paths.children)
+      line.geometry.setFromPoints(this.pathPoints(line).map((v) => new THREE.Vector3(...v)));
     for (const line of this.linkLines.children) {
       const [a, c] = line.userData.ends.map((h) => h.mesh.visible && h.mesh.position);
       line.visible = !!(a && c);
@@ -362,6 +434,7 @@ export class GraphicalViewer {
     for (const b of this.bodies.values()) b.group.visible = this.shown.bodies;
     for (const h of this.handles) h.object.visible = this.shown[GROUPS[h.kind]];
     this.linkLines.visible = this.shown.links;
+    this.paths.visible = this.shown.trajectories;
   }
 
   // Whether a body's starting position is outside the picture (after an
@@ -386,6 +459,9 @@ export class GraphicalViewer {
       b.group.updateMatrixWorld(true);
       box.expandByObject(b.group);
     }
+    // Shown trajectories are framed too.
+    if (this.shown.trajectories)
+      for (const line of this.paths.children) for (const v of this.pathPoints(line)) box.expandByPoint(new THREE.Vector3(...v));
     const sphere = box.getBoundingSphere(new THREE.Sphere());
     const r = Math.max(sphere.radius, 1);
     this.radius = r;
@@ -432,6 +508,7 @@ export class GraphicalViewer {
       b.group.quaternion.copy(start.q);
     }
     this.placeHandles();
+    this.placeSelection();
     this.ui.slider.value = String(this.frame);
     this.ui.clock.textContent = `t = ${t.toFixed(2)}`;
     this.draw();
@@ -490,8 +567,11 @@ export class GraphicalViewer {
     });
     this.ui.play.addEventListener('click', () => this.play());
     this.canvas.addEventListener('pointerdown', (ev) => {
-      const h = this.pick(ev);
+      this.downAt = { x: ev.clientX, y: ev.clientY };
+      // While a creation waits for clicks on bodies, handles are not picked.
+      const h = this.mode ? null : this.pick(ev);
       if (!h) return;
+      if (this.bodies.has(h.element)) this.select(h.element);
       if (!h.editable || !h.value) { this.showLabel(this.describe(h)); return; }
       ev.preventDefault();
       this.controls.enabled = false;
@@ -508,6 +588,12 @@ export class GraphicalViewer {
       this.showLabel(this.describe(h));
     });
     this.canvas.addEventListener('pointermove', (ev) => {
+      if (!this.dragging && this.mode) {
+        // Waiting for clicks on bodies: the body under the pointer, not handles.
+        const b = this.pickBody(ev);
+        this.showLabel(b ? `${b.name} {${b.local.join(' ')}}` : '');
+        return;
+      }
       if (!this.dragging) {
         const h = this.pick(ev);
         this.canvas.style.cursor = h ? (h.editable ? 'grab' : 'not-allowed') : '';
@@ -525,7 +611,12 @@ export class GraphicalViewer {
       this.sendDrag(h);
     });
     const end = async (ev) => {
-      if (!this.dragging) return;
+      if (!this.dragging) {
+        const d = this.downAt;
+        this.downAt = null;
+        if (ev.type === 'pointerup' && d && Math.hypot(ev.clientX - d.x, ev.clientY - d.y) < 5) this.click(ev);
+        return;
+      }
       const h = this.dragging;
       this.dragging = null;
       this.controls.enabled = true;
@@ -537,11 +628,76 @@ export class GraphicalViewer {
     };
     this.canvas.addEventListener('pointerup', end);
     this.canvas.addEventListener('pointercancel', end);
+    window.addEventListener('keydown', (ev) => { if (ev.key === 'Escape' && this.mode) this.cancelPick(); });
   }
+
+  // --- selection and clicks for creating elements (seed 4.1) ---------------
+
+  // The body under the pointer: {name, world, local (shape coordinates)}.
+  pickBody(ev) {
+    this.raycaster.setFromCamera(this.pointer(ev), this.camera);
+    const meshes = [];
+    for (const b of this.bodies.values()) if (b.index >= 0 && b.group.visible) meshes.push(...b.meshes);
+    const hit = this.raycaster.intersectObjects(meshes, false)[0];
+    if (!hit) return null;
+    const name = hit.object.parent.name, b = this.bodies.get(name);
+    return { name, world: hit.point.clone(), local: this.localPoint(b, hit.point, hit.object) };
+  }
+
+  // A click (press and release without moving): a pick for the waiting
+  // creation, else the body under it becomes the selection.
+  click(ev) {
+    const hit = this.pickBody(ev);
+    if (!this.mode) { this.select(hit ? hit.name : null); return; }
+    const m = this.mode;
+    if (hit) m.picks.push(hit);
+    else if (m.point && m.picks.length) {
+      // Off every body: a point in the plane through the view's centre.
+      this.raycaster.setFromCamera(this.pointer(ev), this.camera);
+      const plane = new THREE.Plane().setFromNormalAndCoplanarPoint(this.camera.getWorldDirection(new THREE.Vector3()), this.controls.target);
+      const p = this.raycaster.ray.intersectPlane(plane, new THREE.Vector3());
+      if (!p) return;
+      m.picks.push({ name: null, world: p, local: null, point: [p.x, p.y, p.z].map((v) => round(v)) });
+    } else return;
+    if (m.picks.length < m.count) { this.ui.prompt(m.prompts[m.picks.length]); return; }
+    this.cancelPick();
+    m.done(m.picks);
+  }
+
+  // Waits for `count` clicks on bodies (with `point`, the last may be off
+  // every body: a point in space); `prompts[i]` asks for the i-th.
+  startPick({ count, prompts, point = false, done }) {
+    this.mode = { count, prompts, point, done, picks: [] };
+    this.canvas.style.cursor = 'crosshair';
+    this.ui.prompt(prompts[0]);
+  }
+
+  cancelPick() {
+    this.mode = null;
+    this.canvas.style.cursor = '';
+    this.ui.prompt('');
+    this.showLabel('');
+  }
+
+  select(name) {
+    this.selected = name && this.bodies.has(name) ? name : null;
+    this.placeSelection();
+    this.draw();
+    if (this.ui.selected) this.ui.selected(this.selected);
+  }
+
+  placeSelection() {
+    const b = this.selected && this.bodies.get(this.selected);
+    this.selectionBox.visible = !!b;
+    if (b) this.selectionBox.setFromObject(b.group);
+  }
+
+  // The view's centre of rotation (where a new body is placed).
+  viewCentre() { return this.controls.target.toArray().map((v) => round(v)); }
 
   // One edit in flight at a time; the latest value wins.
   sendDrag(h) {
-    this.latest = { h, values: h.value.slice() };
+    this.latest = { h, values: h.payload ? h.payload() : h.value.slice() };
     if (this.inFlight) return;
     const { values } = this.latest;
     this.latest = null;
@@ -567,6 +723,21 @@ export class GraphicalViewer {
     const p = v.clone().project(this.camera);
     const r = this.canvas.getBoundingClientRect();
     return { x: r.left + ((p.x + 1) / 2) * r.width, y: r.top + ((1 - p.y) / 2) * r.height };
+  }
+  // A body's point (shape coordinates; default its centre of mass) on the screen.
+  bodyScreenPos(name, local) {
+    const b = this.bodies.get(name);
+    if (!b) return null;
+    return this.toScreen(local ? this.onBody(name, local) : b.group.position.clone());
+  }
+  // Each trajectory's curve as drawn: {element: [[x y z] ...]}, and the
+  // drawn curve's value at time t.
+  trajectoryPaths() {
+    return Object.fromEntries(this.paths.children.map((l) => [l.userData.element, this.pathPoints(l)]));
+  }
+  trajectoryValue(element, t) {
+    const line = this.paths.children.find((l) => l.userData.element === element);
+    return line && line.userData.knots.length ? new TrajectoryCurve(line.userData.knots.map((h) => [h.t, ...h.value])).value(t) : null;
   }
   handleScreenPos(name) {
     const h = this.bodyHandle(name, 'init_pos');

@@ -11,6 +11,7 @@
 //   link ends  link#i   offset1/2 ball on each body, line between  held on the surface (Shift: free)
 //              link#i   vector    ball at an object-to-point link's fixed point
 //   light      light    pos, dir  ball at the light, arrow along a directional light's direction
+//   knot       trajectory points  ball at each control point      moves in the screen plane (its time kept)
 //
 // A handle whose value is not a literal the session can rewrite (an
 // expression, a command made in a loop …) is read-only: drawn grey and
@@ -51,15 +52,15 @@ export function rotationLiteral(q, count) {
 
 const COLORS = {
   position: 0xffa000, rotation: 0xc040c0, velocity: 0x2070ff, angvel: 0x10a0a0,
-  force: 0xe03030, offset: 0xe03030, link: 0x209020, light: 0xd0a000,
+  force: 0xe03030, offset: 0xe03030, link: 0x209020, light: 0xd0a000, knot: 0x3060d0,
 };
 // Which toggle shows a kind (the viewer's element-type check boxes).
 export const GROUPS = {
   position: 'handles', rotation: 'handles', velocity: 'velocities', angvel: 'velocities',
-  force: 'forces', offset: 'forces', link: 'links', light: 'lights',
+  force: 'forces', offset: 'forces', link: 'links', light: 'lights', knot: 'trajectories',
 };
 // Coincident handles: the lower wins the pick.
-const PRIORITY = { position: 0, rotation: 1, offset: 2, link: 2, light: 2, force: 3, velocity: 4, angvel: 5 };
+const PRIORITY = { position: 0, rotation: 1, offset: 2, link: 2, light: 2, force: 3, velocity: 4, angvel: 5, knot: 6 };
 
 // The session's view of one element's parameters.
 export class ParameterIndex {
@@ -137,6 +138,7 @@ export class Handle {
   }
   // The name of the value as the text writes it.
   label() {
+    if (this.kind === 'knot') return `${this.element} -points #${this.knot + 1} (t = ${this.t})`;
     const words = this.words && this.words.length > 1 ? this.words.map((w) => `-${w}`).join(' ') : `-${this.param}`;
     return `${this.element} ${words}`;
   }

@@ -107,6 +107,13 @@ export class LanguageViewer {
     return out;
   }
 
+  // Scrolls the session text's line (1-based) into view (a created element).
+  reveal(line) {
+    const doc = this.view.state.doc;
+    if (!(line >= 1)) return;
+    this.view.dispatch({ effects: EditorView.scrollIntoView(doc.line(Math.min(line, doc.lines)).from, { y: 'center' }) });
+  }
+
   revert() {
     this.showSession(this.session, null);
     this.markLiterals();

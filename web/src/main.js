@@ -29,6 +29,7 @@ function applyState(state) {
   for (const v of app.languageViewers) v.showSession(state.text, state.diagnostics, state.parameters);
   app.graphical.setParameters(state.parameters, state.elements);
   showSimulatorOptions(state);
+  showCreateMenu(state);
   const errors = state.diagnostics.filter((d) => d.severity === 'error');
   app.setStatus(errors.length ? `${errors.length} error(s): the last good scene is shown` : '');
 }
@@ -113,6 +114,76 @@ async function editSimulator() {
   } catch { /* run() or the status says why */ }
 }
 
+// The Create menu (seed 4.1): a body of a chosen shape set at the view's
+// centre, a constant or gravitational force on the selected body (unit
+// magnitude along −y, as the seed makes them), a link by clicks on two
+// bodies (or a body and a point in space).  Each is one well-formatted
+// command the session inserts after the last of its kind, so undo removes
+// it and every view shows it.
+const literal = (v) => `{${v.map((x) => Math.round(x * 1000) / 1000).join(' ')}}`;
+
+function freshName(prefix) {
+  const taken = new Set(app.state.elements.map((e) => e.element));
+  let i = 1;
+  while (taken.has(`${prefix}${i}`)) ++i;
+  return `${prefix}${i}`;
+}
+
+function showCreateMenu(state) {
+  const select = document.getElementById('create-shape');
+  const shapes = state.elements.filter((e) => e.kind === 'shape_set').map((e) => e.element);
+  const current = select.value;
+  if ([...select.options].map((o) => o.value).join('\n') !== shapes.join('\n')) {
+    select.textContent = '';
+    for (const name of shapes) select.appendChild(new Option(name, name));
+    if (shapes.includes(current)) select.value = current;
+  }
+  document.getElementById('create-body').disabled = !shapes.length;
+  showSelection(app.graphical.selected);
+}
+
+function showSelection(name) {
+  document.getElementById('selection').textContent = name ? `selected: ${name}` : 'no body selected';
+  for (const id of ['create-force', 'create-gravity']) document.getElementById(id).disabled = !name;
+}
+
+async function create(command) {
+  try {
+    const r = await run('create', { command });
+    const at = r && r.edits && r.edits[0];
+    // The new command's line (an insertion that starts with a newline ends the line before it).
+    if (at) for (const v of app.languageViewers) v.reveal(at.line + (at.text.startsWith('\n') ? 1 : 0));
+  } catch { /* the status says why */ }
+}
+
+function createLink() {
+  app.graphical.startPick({
+    count: 2,
+    point: true,
+    prompts: ['Link: click a point on the first body (Esc cancels)', 'Link: click a point on the second body, or off every body for a point in space'],
+    done: ([a, b]) => {
+      const end2 = b.name ? `-body2 ${b.name} -offset2 ${literal(b.local)}`
+        : `-x ${b.point[0]} -y ${b.point[1]} -z ${b.point[2]}`;
+      create(`link -body1 ${a.name} -offset1 ${literal(a.local)} ${end2} -tightness 10`);
+    },
+  });
+}
+
+function setupCreateMenu() {
+  document.getElementById('create-body').onclick = () => {
+    const shape = document.getElementById('create-shape').value;
+    if (!shape) return;
+    create(`body ${freshName('body')} -shape ${shape} -init_pos ${literal(app.graphical.viewCentre())}`);
+  };
+  document.getElementById('create-force').onclick = () => {
+    if (app.graphical.selected) create(`force -body ${app.graphical.selected} -x 0 -y -1 -z 0`);
+  };
+  document.getElementById('create-gravity').onclick = () => {
+    if (app.graphical.selected) create(`force -body ${app.graphical.selected} -gravitational 1 -x 0 -y -1 -z 0`);
+  };
+  document.getElementById('create-link').onclick = () => createLink();
+}
+
 async function main() {
   app.graphical = new GraphicalViewer(document.getElementById('canvas'), {
     label: document.getElementById('label'),
@@ -123,7 +194,14 @@ async function main() {
     drag: (element, param, values) => conn.call('set_parameter', { element, param, values }),
     // Drag end: re-simulate and show the new motion everywhere.
     dragEnd: () => run('simulate', {}),
+    selected: (name) => showSelection(name),
+    prompt: (text) => {
+      const p = document.getElementById('prompt');
+      p.textContent = text;
+      p.style.display = text ? 'block' : 'none';
+    },
   });
+  setupCreateMenu();
   const count = Math.max(1, Math.min(4, Number(params.get('viewers') || 1)));
   for (let i = 0; i < count; ++i) addLanguageViewer();
 

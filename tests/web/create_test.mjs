@@ -1,0 +1,114 @@
+// Creating elements from the Create menu in headless Chromium (issue 13,
+// seed 4.1): on the seed pendulum in two tabs (the first with two language
+// viewers), "Body" makes a box at the view's centre, "Force" a constant force
+// on the selected body, "Link" a link made by clicking two bodies.  Each new
+// element appears as one well-formatted command in every language viewer and
+// in both graphical viewers, and the session's Undo removes them again.
+// Screenshots go to OUT_DIR.
+import { join } from 'node:path';
+import { browserTest, sleep, waitFor } from './common.mjs';
+
+const [asgard, scene, outDir] = process.argv.slice(2);
+
+const texts = async (pages) => (await Promise.all(pages.map((p) => p.evaluate(() => window.asgard.languageViewers.map((v) => v.text()))))).flat();
+const everyText = async (pages, f) => (await texts(pages)).every(f);
+const nums = (s) => s.trim().split(/\s+/).map(Number);
+
+await browserTest(asgard, scene, 'create', async ({ check, url, context }) => {
+  const a = context.pages()[0] ?? await context.newPage();
+  const b = await context.newPage();
+  const pages = [a, b];
+  const errors = [];
+  for (const p of pages) p.on('pageerror', (e) => errors.push(String(e)));
+  await a.goto(`${url}?viewers=2`);
+  await b.goto(url);
+  for (const p of pages)
+    check(await waitFor(() => p.evaluate(() => window.asgard.ready && window.asgard.graphical.bodyNames().includes('b3'))), 'a tab shows the pendulum');
+  const shapes = await a.evaluate(() => [...document.querySelectorAll('#create-shape option')].map((o) => o.value));
+  check(shapes.join(' ') === 'ss1 box rod', `the Create menu offers the scene's shape sets: ${shapes.join(' ')}`);
+  const forceDisabled = await a.evaluate(() => document.getElementById('create-force').disabled);
+  check(forceDisabled, 'Force is disabled while no body is selected');
+
+  // Body: a box at the view's centre, after the last body command.
+  const centre = await a.evaluate(() => window.asgard.graphical.viewCentre());
+  await a.selectOption('#create-shape', 'box');
+  await a.click('#create-body');
+  const bodyLine = /^body body1 -shape box -init_pos \{([^}]*)\}$/m;
+  check(await waitFor(() => everyText(pages, (t) => bodyLine.test(t)), 'the new body in every language viewer'),
+    'the new body is one command in all three language viewers');
+  const t1 = (await texts([a]))[0];
+  const pos = nums(bodyLine.exec(t1)[1]);
+  check(pos.every((v, k) => Math.abs(v - centre[k]) <= 5e-4), `at the view's centre: {${pos.join(' ')}} vs (${centre.join(', ')})`);
+  const lines = t1.split('\n');
+  const at = lines.findIndex((l) => bodyLine.test(l));
+  check(lines[at - 1].startsWith('body b3 '), 'written right after the last body command');
+  check(await waitFor(async () => (await Promise.all(pages.map((p) => p.evaluate(() => window.asgard.graphical.bodyNames().includes('body1'))))).every(Boolean),
+    'body1 in both graphical viewers'), 'the new body is drawn in both tabs');
+  const start = await b.evaluate(() => window.asgard.graphical.bodyPosition('body1'));
+  check(start.every((v, k) => Math.abs(v - pos[k]) < 1e-5), `and starts where -init_pos says (${start.map((v) => v.toFixed(3)).join(', ')})`);
+  await a.screenshot({ path: join(outDir, '1-new-body.png') });
+
+  // Select body1 (a click on it) and give it a constant force.
+  const h = await a.evaluate(() => window.asgard.graphical.handleScreenPos('body1'));
+  await a.mouse.click(h.x, h.y);
+  check(await waitFor(() => a.evaluate(() => document.getElementById('selection').textContent === 'selected: body1'), 'selection'),
+    'clicking the body selects it');
+  await sleep(300);  // the press's re-simulation
+  await a.click('#create-force');
+  const forceLine = 'force -body body1 -x 0 -y -1 -z 0';
+  check(await waitFor(() => everyText(pages, (t) => t.split('\n').includes(forceLine)), 'the force in every viewer'),
+    `"${forceLine}" in every language viewer`);
+  const forceLines = (await texts([a]))[0].split('\n');
+  check(forceLines[forceLines.indexOf(forceLine) - 1].startsWith('force '), 'written after the last force command');
+  check(await waitFor(() => b.evaluate(() => window.asgard.graphical.handleList().some((x) => x.id === 'force#2.vector' && x.editable)), 'force handle'),
+    'the other tab draws the new force\'s handle');
+  // A unit box has unit mass at unit density: y(1) − y(0) = −½·1·1².
+  const fall = await waitFor(async () => {
+    const d = await b.evaluate(() => {
+      const g = window.asgard.graphical, i = g.poses.times.findIndex((t) => Math.abs(t - 1) < 1e-9);
+      return i < 0 ? null : g.bodyPosition('body1', i)[1] - g.bodyPosition('body1', 0)[1];
+    });
+    return d !== null && Math.abs(d + 0.5) < 1e-3;
+  }, 'the force in the motion');
+  check(fall, 'the re-simulated box falls 0.5 in the first second under the new force');
+  await a.screenshot({ path: join(outDir, '2-new-force.png') });
+
+  // Link: two clicks, on b3's ball and on the box (handles are not picked
+  // while the link waits for its clicks).
+  const linksBefore = await b.evaluate(() => window.asgard.graphical.linkLines.children.length);
+  await a.click('#create-link');
+  check(await a.evaluate(() => document.getElementById('prompt').textContent.includes('first body')), 'the viewer asks for the first body');
+  const p3 = await a.evaluate(() => window.asgard.graphical.bodyScreenPos('b3'));
+  await a.mouse.click(p3.x, p3.y);
+  check(await a.evaluate(() => document.getElementById('prompt').textContent.includes('second body')), 'then for the second');
+  await a.screenshot({ path: join(outDir, '3-link-second-click.png') });
+  const p1 = await a.evaluate(() => window.asgard.graphical.bodyScreenPos('body1'));
+  await a.mouse.click(p1.x, p1.y);
+  const linkLine = /^link -body1 b3 -offset1 \{([^}]*)\} -body2 body1 -offset2 \{([^}]*)\} -tightness 10$/m;
+  check(await waitFor(() => everyText(pages, (t) => linkLine.test(t)), 'the link in every viewer'),
+    'the link is one command in every language viewer');
+  const m = linkLine.exec((await texts([b]))[0]);
+  const o1 = nums(m[1]), o2 = nums(m[2]);
+  // Rounded to 1e-3 per component: within 1e-3 of the surfaces.
+  check(Math.abs(Math.hypot(...o1) - 0.5) < 2e-3, `-offset1 {${o1.join(' ')}} is on b3's ball (radius 0.5)`);
+  check(Math.abs(Math.max(...o2.map(Math.abs)) - 0.5) < 2e-3, `-offset2 {${o2.join(' ')}} is on the unit box`);
+  check(await waitFor(() => b.evaluate((n) => window.asgard.graphical.linkLines.children.length === n + 1, linksBefore), 'link line'),
+    'the other tab draws the new link');
+  await a.evaluate(() => window.asgard.graphical.seek(2));
+  await a.screenshot({ path: join(outDir, '4-new-link.png') });
+
+  // Undo three times: link, force and body go from every view.
+  for (const [what, gone] of [
+    ['link', (t) => !linkLine.test(t)],
+    ['force', (t) => !t.includes(forceLine)],
+    ['body', (t) => !bodyLine.test(t)],
+  ]) {
+    await a.click('#undo');
+    check(await waitFor(() => everyText(pages, gone), `undo ${what}`), `Undo removes the ${what} from every language viewer`);
+  }
+  check(await waitFor(() => b.evaluate(() => !window.asgard.graphical.bodyNames().includes('body1')), 'body gone'),
+    'and the body from the other tab\'s picture');
+  check((await texts(pages)).every((t) => t === (lines.filter((l) => !bodyLine.test(l)).join('\n'))), 'the text is the original again');
+  await b.screenshot({ path: join(outDir, '5-undone.png') });
+  check(errors.length === 0, `no script errors in the pages ${errors.join('; ')}`);
+});
