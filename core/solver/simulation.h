@@ -49,10 +49,11 @@ struct RunBudget {
   // truncations included (a run of the samples takes ~1e5; 5e7 is minutes).
   long steps = 50'000'000;
   // Velocity jumps (impacts and resting-contact events) one body may take
-  // in one Run.  The cost of a body's jumps grows faster than their number
-  // (its component re-sorts its event times at each), so this also bounds
-  // the time a run can spend on one body bouncing: 10 000 take about a
-  // minute.
+  // in one Run.  A body's jumps cost more as they accumulate (its components
+  // merge their event times at each, linear in their number), so this also
+  // bounds the time a run can spend on one body bouncing: 10 000 take about
+  // 14 s for a ball between two walls.  Resting contact makes at most about
+  // one event per check window (1024 per run) while awake.
   long impulses_per_body = 10'000;
   // Impacts of all bodies in one Run, as the collision monitor counts them
   // (pipeline::Solve enforces it: the solver itself does not see impacts).
