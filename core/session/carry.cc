@@ -13,6 +13,7 @@
 // bit for bit.  Impacts between two carried-over bodies stay; an impact
 // between a carried-over body and a changed one cuts the carried-over body
 // back to just before it.
+#include <algorithm>
 #include <cstring>
 #include <map>
 #include <set>
@@ -30,7 +31,8 @@ class Matcher {
           const scene::Scene& sa, const scene::Scene& sb)
       : a_(a), b_(b) {
     std::map<std::string, int> by_name;
-    for (size_t i = 0; i < a.variables.size(); ++i) by_name[a.variables[i].name] = static_cast<int>(i);
+    for (size_t i = 0; i < a.variables.size(); ++i)
+      by_name[a.variables[i].name] = static_cast<int>(i);
     var_.assign(b.variables.size(), -1);
     for (size_t i = 0; i < b.variables.size(); ++i) {
       auto it = by_name.find(b.variables[i].name);
@@ -58,7 +60,8 @@ class Matcher {
       return false;
     for (size_t k = 0; k < nv.overrides.size(); ++k) {
       const auto &x = ov.overrides[k], &y = nv.overrides[k];
-      if (x.kind != y.kind || x.from != y.from || x.to != y.to || !Same(x.expr, y.expr)) return false;
+      if (x.kind != y.kind || x.from != y.from || x.to != y.to || !Same(x.expr, y.expr))
+        return false;
     }
     return true;
   }
@@ -71,10 +74,12 @@ class Matcher {
     const expr::Node& q = b_.pool.node(y);
     bool same = p.op == q.op && p.order == q.order && p.args.size() == q.args.size() &&
                 std::memcmp(&p.value, &q.value, sizeof(double)) == 0;
-    if (same && p.op == expr::Op::kVar) same = var_[q.index] == p.index;
+    if (same && p.op == expr::Op::kVar)
+      same = var_[q.index] == p.index;
     else if (same && p.op == expr::Op::kExtern)
       same = p.index % 3 == q.index % 3 && curve_[q.index / 3] == p.index / 3;
-    else if (same) same = p.index == q.index;
+    else if (same)
+      same = p.index == q.index;
     for (size_t k = 0; same && k < p.args.size(); ++k) same = Same(p.args[k], q.args[k]);
     memo_[key] = same;
     return same;
@@ -142,27 +147,38 @@ void Session::CarryOverRun(const std::function<void(double)>& progress) {
   if (old->collisions && run_->collisions) {
     std::vector<solver::Impact> keep;
     for (const auto& imp : old->collisions->impacts()) {
-      auto ia = new_body.find(oe.bodies[imp.a].name), ib = new_body.find(oe.bodies[imp.b].name);
-      const bool a_ok = ia != new_body.end() &&
-                        (ne.bodies[ia->second].first_var < 0
-                             ? static_same(imp.a, ia->second)
-                             : body_clean(ne, run_->scene, ia->second, &sim, &clean));
-      const bool b_ok = ib != new_body.end() &&
-                        (ne.bodies[ib->second].first_var < 0
-                             ? static_same(imp.b, ib->second)
-                             : body_clean(ne, run_->scene, ib->second, &sim, &clean));
-      if (a_ok && b_ok) {
+      // Every body whose variables jumped at the event (both of an impact,
+      // the whole island of a resting solve) must be carried over unchanged
+      // for the event to stand; its indices are this run's.
+      std::vector<int> involved = {imp.a, imp.b};
+      for (int b : imp.bodies)
+        if (std::find(involved.begin(), involved.end(), b) == involved.end()) involved.push_back(b);
+      std::map<int, int> to_new;  // old index → new index, for the bodies carried over
+      bool all_ok = true;
+      for (int ob : involved) {
+        auto it = new_body.find(oe.bodies[ob].name);
+        const bool ok =
+            it != new_body.end() && (ne.bodies[it->second].first_var < 0
+                                         ? static_same(ob, it->second)
+                                         : body_clean(ne, run_->scene, it->second, &sim, &clean));
+        if (ok) to_new[ob] = it->second;
+        all_ok = all_ok && ok;
+      }
+      if (all_ok) {
         solver::Impact moved = imp;
-        moved.a = std::min(ia->second, ib->second);
-        moved.b = std::max(ia->second, ib->second);
+        moved.a = std::min(to_new[imp.a], to_new[imp.b]);
+        moved.b = std::max(to_new[imp.a], to_new[imp.b]);
+        if (moved.a != to_new[imp.a]) moved.normal = -moved.normal;  // from a towards b
+        for (int& b : moved.bodies) b = to_new[b];
+        for (int& b : moved.slow) b = to_new[b];
         keep.push_back(moved);
         continue;
       }
-      // The clean side's motion after the impact depended on the changed one.
-      for (auto [ok, it] : {std::pair{a_ok, ia}, std::pair{b_ok, ib}}) {
-        if (!ok || ne.bodies[it->second].first_var < 0) continue;
+      // The clean bodies' motion after the event depended on the changed ones.
+      for (const auto& [ob, nb] : to_new) {
+        if (ne.bodies[nb].first_var < 0) continue;
         for (int k = 0; k < physics::kBodySlots; ++k)
-          sim.Truncate(sim.component_of(ne.bodies[it->second].first_var + k), imp.t, /*strict=*/true);
+          sim.Truncate(sim.component_of(ne.bodies[nb].first_var + k), imp.t, /*strict=*/true);
       }
     }
     run_->collisions->AdoptImpacts(keep);

@@ -292,7 +292,9 @@ CollisionMonitor::CollisionMonitor(Simulation& sim, double separation)
 
 void CollisionMonitor::AdoptImpacts(const std::vector<Impact>& impacts) {
   impacts_.insert(impacts_.end(), impacts.begin(), impacts.end());
-  std::sort(impacts_.begin(), impacts_.end(), ImpactOrder);
+  // Stable: events of one pair at one instant (a jam, a resting island) keep
+  // the order they happened in, which SlowEvents reads.
+  std::stable_sort(impacts_.begin(), impacts_.end(), ImpactOrder);
 }
 
 bool CollisionMonitor::Tested(int a, int b) const {
