@@ -111,29 +111,6 @@ std::string SceneText(const ContactScene& s) {
   return t.str();
 }
 
-// Deepest penetration of the floor (y = 0) or the box's walls by one body.
-double Penetration(const ContactScene& s, const ContactBody& shape, const Eigen::Vector3d& p,
-                   const Eigen::Quaterniond& q) {
-  double deepest = 0.0;
-  auto against = [&](const Eigen::Vector3d& x, double r) {
-    if (s.box) {
-      for (int k = 0; k < 3; ++k) deepest = std::max(deepest, std::abs(x[k]) + r - s.box_half);
-    } else {
-      deepest = std::max(deepest, r - x.y());
-    }
-  };
-  if (!shape.cube) {
-    against(p, shape.radius);
-    return deepest;
-  }
-  const Eigen::Matrix3d R = q.normalized().toRotationMatrix();
-  for (int c = 0; c < 8; ++c) {
-    const Eigen::Vector3d corner(c & 1 ? 0.5 : -0.5, c & 2 ? 0.5 : -0.5, c & 4 ? 0.5 : -0.5);
-    against(p + R * corner, 0.0);
-  }
-  return deepest;
-}
-
 double KineticEnergy(const ContactBody& shape, const Eigen::Vector3d& v, const Eigen::Vector3d& w) {
   // Unit mass; a unit cube's moment 1/6, a ball's 2/5 r².
   const double moment = shape.cube ? 1.0 / 6.0 : 0.4 * shape.radius * shape.radius;
@@ -154,9 +131,9 @@ ContactResult RunAsgardContact(const ContactScene& s, double timeout) {
           const int b = eq.FindBody("c" + std::to_string(i));
           for (double t : times) {
             const auto f = pipeline::SampleBody(eq, sim, b, t);
-            deepest =
-                std::max(deepest, Penetration(s, s.bodies[i], {f.p[0], f.p[1], f.p[2]},
-                                              Eigen::Quaterniond(f.q[0], f.q[1], f.q[2], f.q[3])));
+            deepest = std::max(deepest, FloorOrWallPenetration(
+                                            s, s.bodies[i], {f.p[0], f.p[1], f.p[2]},
+                                            Eigen::Quaterniond(f.q[0], f.q[1], f.q[2], f.q[3])));
           }
           for (int end = 0; end < 2; ++end) {
             const auto f = pipeline::SampleBody(eq, sim, b, end ? eq.t1 : eq.t0);
@@ -200,6 +177,28 @@ ContactResult RunAsgardContact(const ContactScene& s, double timeout) {
 }
 
 }  // namespace
+
+double FloorOrWallPenetration(const ContactScene& s, const ContactBody& shape,
+                              const Eigen::Vector3d& p, const Eigen::Quaterniond& q) {
+  double deepest = 0.0;
+  auto against = [&](const Eigen::Vector3d& x, double r) {
+    if (s.box) {
+      for (int k = 0; k < 3; ++k) deepest = std::max(deepest, std::abs(x[k]) + r - s.box_half);
+    } else {
+      deepest = std::max(deepest, r - x.y());
+    }
+  };
+  if (!shape.cube) {
+    against(p, shape.radius);
+    return deepest;
+  }
+  const Eigen::Matrix3d R = q.normalized().toRotationMatrix();
+  for (int c = 0; c < 8; ++c) {
+    const Eigen::Vector3d corner(c & 1 ? 0.5 : -0.5, c & 2 ? 0.5 : -0.5, c & 4 ? 0.5 : -0.5);
+    against(p + R * corner, 0.0);
+  }
+  return deepest;
+}
 
 void RunContact(const Config& cfg) {
   Csv csv(cfg.out_dir + "/contact.csv",

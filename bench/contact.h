@@ -4,6 +4,7 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <Eigen/Geometry>
 #include <string>
 #include <vector>
 
@@ -41,6 +42,11 @@ struct ContactResult {
   double impacts = 0.0, windows = 0.0, broad_pairs = 0.0, narrow_queries = 0.0,
          distance_queries = 0.0;
 };
+
+// Deepest penetration of the scene's floor (y = 0) or box walls by one body
+// at position p, orientation q (0 when clear).
+double FloorOrWallPenetration(const ContactScene& s, const ContactBody& shape,
+                              const Eigen::Vector3d& p, const Eigen::Quaterniond& q);
 
 #ifdef ASGARD_BENCH_BULLET
 // Bullet in double precision at fixed steps h (no substeps); its default

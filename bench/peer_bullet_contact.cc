@@ -14,22 +14,12 @@ namespace asgard::bench {
 
 namespace {
 
-double Penetration(const ContactScene& s, bool cube, double radius, const btTransform& x) {
-  double deepest = 0.0;
-  auto against = [&](const btVector3& p, double r) {
-    if (s.box) {
-      for (int k = 0; k < 3; ++k) deepest = std::max(deepest, std::abs(p[k]) + r - s.box_half);
-    } else {
-      deepest = std::max(deepest, r - p.y());
-    }
-  };
-  if (!cube) {
-    against(x.getOrigin(), radius);
-    return deepest;
-  }
-  for (int c = 0; c < 8; ++c)
-    against(x * btVector3(c & 1 ? 0.5 : -0.5, c & 2 ? 0.5 : -0.5, c & 4 ? 0.5 : -0.5), 0.0);
-  return deepest;
+double Penetration(const ContactScene& s, size_t i, const btRigidBody& body) {
+  const btTransform& x = body.getWorldTransform();
+  const btQuaternion q = x.getRotation();
+  return FloorOrWallPenetration(s, s.bodies[i],
+                                {x.getOrigin().x(), x.getOrigin().y(), x.getOrigin().z()},
+                                Eigen::Quaterniond(q.w(), q.x(), q.y(), q.z()));
 }
 
 }  // namespace
@@ -111,9 +101,7 @@ ContactResult RunBulletContact(const ContactScene& s, double h) {
     if (k % per_frame != 0 && k != steps) continue;
     const double p0 = ThreadCpuSeconds();
     for (size_t i = 0; i < moving.size(); ++i)
-      out.max_penetration = std::max(
-          out.max_penetration,
-          Penetration(s, s.bodies[i].cube, s.bodies[i].radius, moving[i]->getWorldTransform()));
+      out.max_penetration = std::max(out.max_penetration, Penetration(s, i, *moving[i]));
     penetration_cpu += ThreadCpuSeconds() - p0;
   }
   out.final_kinetic = energy();
