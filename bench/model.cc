@@ -353,10 +353,10 @@ TapeOde::TapeOde(const std::string& text) {
   // Jacobian is dense and taken by difference quotients.
   std::vector<std::vector<std::pair<int, expr::NodeId>>> cols(n_);
   if (!eq.joints.empty()) {
-    std::vector<int> joints(eq.joints.size()), local_first;
+    std::vector<int> joints(eq.joints.size());
     for (size_t j = 0; j < joints.size(); ++j) joints[j] = static_cast<int>(j);
-    for (const auto& b : eq.bodies) local_first.push_back(b.first_var);
-    joints_ = std::make_shared<physics::JointSolver>(eq, joints, local_first);
+    joints_ = std::make_shared<physics::JointSolver>(
+        eq, joints, [&eq](int b) { return eq.bodies[b].first_var; });
     prescribed_.assign(n_, 0);
     for (int j = 0; j < n_; ++j)
       for (int i = 0; i < n_; ++i) cols[j].push_back({i, pool.Const(0.0)});

@@ -175,7 +175,8 @@ nlohmann::json CountersJson(const asgard::solver::Counters& c) {
           {"newton_iterations", c.newton_iterations},
           {"newton_failures", c.newton_failures},
           {"truncated_steps", c.truncated_steps},
-          {"restarts", c.restarts}};
+          {"restarts", c.restarts},
+          {"rest_steps", c.rest_steps}};
 }
 
 bool WriteJson(const std::string& path, const std::string& scene_file, const Frames& frames,
@@ -210,7 +211,8 @@ bool WriteJson(const std::string& path, const std::string& scene_file, const Fra
 }
 
 void PrintCounters(std::ostream& out, const asgard::solver::Counters& c) {
-  out << "  steps " << c.steps << " (rejected " << c.rejected_steps << ", explicit "
+  out << "  steps " << c.steps << " (rejected " << c.rejected_steps << ", at rest "
+      << c.rest_steps << ", explicit "
       << c.explicit_steps << ", TR-BDF2 " << c.trbdf2_steps << ", method switches "
       << c.method_switches << "), rhs evaluations " << c.rhs_evaluations << ", jacobians "
       << c.jacobian_evaluations << ", factorizations " << c.factorizations << ", newton iterations "

@@ -41,6 +41,7 @@
 #pragma once
 
 #include <Eigen/Dense>
+#include <functional>
 #include <vector>
 
 #include "core/expr/expr.h"
@@ -50,11 +51,11 @@ namespace asgard::physics {
 
 class JointSolver {
  public:
-  // `joints`: indices into sys.joints.  `local_first[b]` (per body of sys)
+  // `joints`: indices into sys.joints.  `local_first(b)` (b a body of sys)
   // is the index of body b's first state variable in the rate array that
   // Apply corrects, or -1 when b's state is not there.
   JointSolver(const EquationSystem& sys, std::vector<int> joints,
-              const std::vector<int>& local_first);
+              const std::function<int(int)>& local_first);
 
   // Adds the joint forces' effect to `rates` (accelerations and angular
   // accelerations of the bodies involved).  `values` holds every state
@@ -112,8 +113,10 @@ class JointSolver {
   void Symbolic();
   void Prepare(double t, const double* values, const char* prescribed,
                const expr::ExternFn* externs);
-  // Factors K + εD at the prepared state and overwrites rhs_ with the solution.
+  // Factors K + εD at the prepared state and overwrites rhs_ with the
+  // solution of K λ = rhs_ (refined once against K).
   void Solve();
+  void Substitute(std::vector<Eigen::Vector3d>& v) const;
   // Adds the effect of forces (or impulses) rhs_ to `out` (rates or velocities).
   void Distribute(double* out, const char* prescribed) const;
   int Slot(int i, int j);
@@ -128,7 +131,9 @@ class JointSolver {
   std::vector<std::vector<std::pair<int, int>>> shared_;  // per joint: (other joint, body)
   std::vector<Pivot> pivots_;                             // in elimination order
   std::vector<std::pair<int, int>> slot_keys_;            // (row, col) of each slot
-  std::vector<Eigen::Matrix3d> blocks_;
+  std::vector<Eigen::Matrix3d> blocks_;                   // K + εD, then its factor
+  std::vector<Eigen::Matrix3d> coupling_;                 // K, per slot
+  std::vector<Eigen::Vector3d> residual_;                 // per joint
   std::vector<Eigen::Matrix3d> dinv_;                     // per pivot
   std::vector<Eigen::Vector3d> rhs_;                      // per joint
   std::vector<Eigen::Vector3d> arm_a_, arm_b_;            // per joint, world

@@ -860,9 +860,15 @@ void CollisionMonitor::Respond(const Impact& impact) {
   const double margin = ContactMargin(impact.a, impact.b);
   const PairContact pc = ContactsAt(impact.a, impact.b, t, margin);
   const Eigen::Vector3d acc_rel = Acceleration(impact.b, t) - Acceleration(impact.a, t);
-  const double hop =
-      HopPeriod(acc_rel.norm(), std::min(bodies_[impact.a].radius, bodies_[impact.b].radius));
-  const double slow_speed = 2.0 * acc_rel.norm() * hop;
+  const double radius = std::min(bodies_[impact.a].radius, bodies_[impact.b].radius);
+  const double hop = HopPeriod(acc_rel.norm(), radius);
+  // Slow: what the hop itself reaches, and never less than a touch whose
+  // bounce would rise under 1e-6 of the radius in a hop of either body —
+  // two bodies of a stack fall together between hops (no relative
+  // acceleration), and their grazes of 1e-11 m/s are not impacts.
+  const double own_hop =
+      HopPeriod(std::max(Acceleration(impact.a, t).norm(), Acceleration(impact.b, t).norm()), radius);
+  const double slow_speed = std::max(2.0 * acc_rel.norm() * hop, 1e-6 * radius / own_hop);
   const double approach = pc.points.empty() ? kInf : Approach(impact.a, impact.b, t, pc.points);
   // A lone ball on something immovable keeps the seed's bouncing and comes to
   // rest by the hold below; everything else that arrives slowly rests.

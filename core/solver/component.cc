@@ -50,6 +50,12 @@ constexpr int kCalmVotes = 6;
 // for motion sampled at frame rates.  Exact joints' stabilization (20/s) and
 // rigid-body rotation stay far below it.
 constexpr double kStartStiffRho = 500.0;
+// Rest steps: a component whose state would move by at most this fraction of
+// the tolerance over a span (to second order) keeps its state over it.
+constexpr double kRestFraction = 1e-3;
+// A rest step is taken only when it spans this many of the steps the
+// integrator would take instead (else the probe costs more than it saves).
+constexpr double kRestMinGain = 4.0;
 
 // Dormand–Prince 5(4), FSAL, with its 4th-order continuous extension
 // (Dormand & Prince 1980; dense output coefficients of Hairer, Nørsett &
@@ -91,6 +97,7 @@ Counters& Counters::operator+=(const Counters& o) {
   newton_iterations += o.newton_iterations;
   newton_failures += o.newton_failures;
   truncated_steps += o.truncated_steps;
+  rest_steps += o.rest_steps;
   restarts += o.restarts;
   return *this;
 }
@@ -98,6 +105,8 @@ Counters& Counters::operator+=(const Counters& o) {
 struct Component::Mode {
   std::vector<char> prescribed;  // per local variable
   expr::Tape f_tape;             // n outputs: ẋ (ODE rows) or g (prescribed rows)
+  std::vector<expr::NodeId> outputs;  // per row: ẋ's or g's expression
+  // Built on first use (PrepareJacobian): everything below but `out` of f.
   expr::Tape fj_tape;            // the same followed by the Jacobian entries
   std::vector<int> jrow, jcol;   // local (row, col) of each Jacobian entry
   expr::Tape gdot_tape;          // ∂g/∂t for prescribed rows whose g depends on t only
@@ -106,6 +115,9 @@ struct Component::Mode {
   std::vector<double> jvals, mvals, out;
   std::unique_ptr<LinearSolver> solver;
   bool any_prescribed = false;
+  // No row depends on t (nor on a moving joint point): with constant inputs
+  // a state where the rates vanish stays (rest steps).
+  bool autonomous = false;
 };
 
 struct Component::Attempt {
@@ -162,17 +174,17 @@ void Component::Initialize() {
   static_breakpoints_.erase(std::unique(static_breakpoints_.begin(), static_breakpoints_.end()),
                             static_breakpoints_.end());
   // Exact joints whose bodies are ours (a jointed group is always whole).
-  std::vector<int> joints;
-  for (size_t j = 0; j < sys_.joints.size(); ++j)
-    if (sim_.component_of(sys_.bodies[sys_.joints[j].body_a].first_var) == index_)
-      joints.push_back(static_cast<int>(j));
+  const std::vector<int>& joints = sim_.joints_of(index_);
   if (!joints.empty()) {
-    std::vector<int> local_first(sys_.bodies.size(), -1);
-    for (size_t b = 0; b < sys_.bodies.size(); ++b) {
+    auto local_first = [&](int b) {
       const int v = sys_.bodies[b].first_var;
-      if (v >= 0 && sim_.component_of(v) == index_) local_first[b] = sim_.local_index(v);
-    }
-    joints_ = std::make_unique<physics::JointSolver>(sys_, std::move(joints), local_first);
+      return v >= 0 && sim_.component_of(v) == index_ ? sim_.local_index(v) : -1;
+    };
+    for (int j : joints)
+      if (sys_.joints[j].body_b < 0)
+        for (expr::NodeId e : sys_.joints[j].p)
+          if (sys_.pool.DependsOnTime(e)) points_autonomous_ = false;
+    joints_ = std::make_unique<physics::JointSolver>(sys_, joints, local_first);
   }
 
   StartSample();
@@ -195,7 +207,12 @@ void Component::StartSample() {
   SampleInfo info = wave_.info(last);
   wave_.Resize(0);
   wave_.Append(sys_.t0, x.data(), f.data(), info);
-  wave_.info(0).implicit = InitialImplicit(sys_.t0);
+  // A state at rest (rates all zero) needs no method until something moves
+  // it; the stiffness test then waits for the votes of the steps.
+  const Mode& m = ModeAt(sys_.t0);
+  const bool still = m.autonomous && inputs_.empty() &&
+                     std::all_of(f.begin(), f.end(), [](double v) { return v == 0.0; });
+  wave_.info(0).implicit = !still && InitialImplicit(sys_.t0);
   jac_sample_ = -1;
 }
 
@@ -276,36 +293,12 @@ std::unique_ptr<Component::Mode> Component::BuildMode(const std::string& key, do
       gdots.push_back(pool.Const(0.0));
     }
   }
-  std::vector<expr::NodeId> all = outputs;
-  for (int j = 0; j < n && joints_; ++j)
-    for (int c = 0; c < n; ++c) {
-      m->jrow.push_back(j);
-      m->jcol.push_back(c);
-    }
-  for (int j = 0; j < n && !joints_; ++j) {
-    for (int v : pool.Variables(outputs[j])) {
-      auto it = std::lower_bound(vars_.begin(), vars_.end(), v);
-      if (it == vars_.end() || *it != v) continue;
-      const expr::NodeId d = pool.Derivative(outputs[j], v);
-      if (pool.IsConst(d) && *pool.ConstValue(d) == 0.0) continue;
-      m->jrow.push_back(j);
-      m->jcol.push_back(static_cast<int>(it - vars_.begin()));
-      all.push_back(d);
-    }
-  }
+  m->outputs = outputs;
+  m->autonomous = points_autonomous_ &&
+                  std::none_of(outputs.begin(), outputs.end(),
+                               [&](expr::NodeId e) { return pool.DependsOnTime(e); });
   m->f_tape = expr::Tape::Compile(pool, outputs);
-  m->fj_tape = expr::Tape::Compile(pool, all);
   m->gdot_tape = expr::Tape::Compile(pool, gdots);
-  for (int j = 0; j < n; ++j) {
-    m->mrow.push_back(j);
-    m->mcol.push_back(j);
-  }
-  m->mrow.insert(m->mrow.end(), m->jrow.begin(), m->jrow.end());
-  m->mcol.insert(m->mcol.end(), m->jcol.begin(), m->jcol.end());
-  m->jvals.assign(m->jrow.size(), 0.0);
-  m->mvals.assign(m->mrow.size(), 0.0);
-  m->out.assign(all.size(), 0.0);
-  m->solver = LinearSolver::Create(n, m->mrow, m->mcol, sim_.options().dense_limit);
   m->any_prescribed =
       std::any_of(m->prescribed.begin(), m->prescribed.end(), [](char p) { return p != 0; });
   gdot_.resize(std::max(gdot_.size(), m->gdot_rows.size()));
@@ -332,7 +325,45 @@ void Component::EvalF(const Mode& m, double t, const double* y, double* out, Sid
   ++counters_.rhs_evaluations;
 }
 
+// The Jacobian's pattern, tape and linear solver, built when a mode first
+// needs them (a component at rest never does).
+void Component::PrepareJacobian(Mode& m) {
+  if (m.solver) return;
+  auto& pool = const_cast<expr::Pool&>(sys_.pool);  // derivatives extend the pool
+  const int n = static_cast<int>(vars_.size());
+  std::vector<expr::NodeId> all = m.outputs;
+  for (int j = 0; j < n && joints_; ++j)
+    for (int c = 0; c < n; ++c) {
+      m.jrow.push_back(j);
+      m.jcol.push_back(c);
+    }
+  for (int j = 0; j < n && !joints_; ++j) {
+    for (int v : pool.Variables(m.outputs[j])) {
+      auto it = std::lower_bound(vars_.begin(), vars_.end(), v);
+      if (it == vars_.end() || *it != v) continue;
+      const expr::NodeId d = pool.Derivative(m.outputs[j], v);
+      if (pool.IsConst(d) && *pool.ConstValue(d) == 0.0) continue;
+      m.jrow.push_back(j);
+      m.jcol.push_back(static_cast<int>(it - vars_.begin()));
+      all.push_back(d);
+    }
+  }
+  // Jointed components difference the whole f (EvalJacobianNumerically).
+  if (!joints_) m.fj_tape = expr::Tape::Compile(pool, all);
+  for (int j = 0; j < n; ++j) {
+    m.mrow.push_back(j);
+    m.mcol.push_back(j);
+  }
+  m.mrow.insert(m.mrow.end(), m.jrow.begin(), m.jrow.end());
+  m.mcol.insert(m.mcol.end(), m.jcol.begin(), m.jcol.end());
+  m.jvals.assign(m.jrow.size(), 0.0);
+  m.mvals.assign(m.mrow.size(), 0.0);
+  m.out.assign(all.size(), 0.0);
+  m.solver = LinearSolver::Create(n, m.mrow, m.mcol, sim_.options().dense_limit);
+}
+
 void Component::EvalJacobian(Mode& m, double t, const double* y) {
+  PrepareJacobian(m);
   if (joints_) return EvalJacobianNumerically(m, t, y);
   Load(t, y, Side::kRight);
   const expr::ExternFn& ext = sim_.externs();
@@ -386,6 +417,7 @@ double Component::SpectralRadius(const Mode& m) {
 }
 
 bool Component::FactorMatrix(Mode& m, double a) {
+  PrepareJacobian(m);
   if (factored_a_ == a) return true;
   const size_t n = vars_.size();
   for (size_t j = 0; j < n; ++j) m.mvals[j] = 1.0;
@@ -634,6 +666,38 @@ bool Component::CheckFinite() {
   return true;
 }
 
+// How long the last sample's state may be kept as it is: the span H over
+// which the solution's first two Taylor terms, H f and H²/2 J f, both stay
+// below kRestFraction of the tolerance (J f by a difference along f of one
+// tolerance unit).  Rates that are all exactly zero keep the state for ever
+// (it is an equilibrium).  0 when that is not worth a rest step against the
+// step `h` the integrator would try.  Only for autonomous modes without
+// inputs, where the rates at an unchanged state are unchanged.
+double Component::RestSpan(const Mode& m, double h) {
+  const int k = wave_.size() - 1;
+  const size_t n = vars_.size();
+  const double* x = wave_.x(k);
+  const double* f = wave_.f(k);
+  const SolverOptions& o = sim_.options();
+  double fn = 0.0;
+  for (size_t j = 0; j < n; ++j)
+    if (!m.prescribed[j]) fn = std::max(fn, std::abs(f[j]) / (o.atol + o.rtol * std::abs(x[j])));
+  if (fn == 0.0) return std::numeric_limits<double>::infinity();
+  const double first = kRestFraction / fn;
+  if (!(first >= kRestMinGain * h)) return 0.0;
+  const double delta = 1.0 / fn;
+  for (size_t j = 0; j < n; ++j) y_[j] = m.prescribed[j] ? x[j] : x[j] + delta * f[j];
+  EvalF(m, wave_.time(k), y_.data(), fy_.data(), Side::kRight, false);
+  double jf = 0.0;
+  for (size_t j = 0; j < n; ++j)
+    if (!m.prescribed[j])
+      jf = std::max(jf, std::abs(fy_[j] - f[j]) / delta / (o.atol + o.rtol * std::abs(x[j])));
+  const double second = jf > 0 ? std::sqrt(2.0 * kRestFraction / jf)
+                               : std::numeric_limits<double>::infinity();
+  const double span = std::min(first, second);
+  return span >= kRestMinGain * h ? span : 0.0;
+}
+
 bool Component::Step() {
   if (PendingRestart()) Restart();
   if (!CheckFinite()) return false;
@@ -650,6 +714,22 @@ bool Component::Step() {
   const bool implicit = UseImplicit(mode, info);
   const bool auto_method = o.method == SolverOptions::Method::kAuto && !mode.any_prescribed;
   double h = std::min(info.h_next, h_max);
+  if (mode.autonomous && inputs_.empty()) {
+    const double rest = RestSpan(mode, std::min(h, h_max));
+    if (rest > 0) {
+      const Plan plan = PlanStep(t, std::min(rest, h_max), NextBreakpoint(t), sys_.t1);
+      SampleInfo next = info;
+      next.restart = false;
+      std::copy(wave_.x(k), wave_.x(k) + vars_.size(), x_.begin());
+      std::copy(wave_.f(k), wave_.f(k) + vars_.size(), rate_.begin());
+      wave_.Append(plan.t_end, x_.data(), rate_.data(), next);
+      ++counters_.steps;
+      ++counters_.rest_steps;
+      jac_sample_ = -1;
+      if (plan.landing) Restart();
+      return true;
+    }
+  }
   bool rejected = false;
   for (;;) {
     const Plan plan = PlanStep(t, h, NextBreakpoint(t), sys_.t1);

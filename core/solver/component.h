@@ -107,6 +107,7 @@ struct Counters {
   long newton_failures = 0;
   long truncated_steps = 0;
   long restarts = 0;
+  long rest_steps = 0;         // steps that kept a state at rest (RestSpan)
 
   Counters& operator+=(const Counters& o);
 };
@@ -180,6 +181,7 @@ class Component {
   // Fills the global value array with y and with the inputs at t.
   void Load(double t, const double* y, Side side);
   void EvalF(const Mode& m, double t, const double* y, double* out, Side side, bool landing);
+  void PrepareJacobian(Mode& m);
   void EvalJacobian(Mode& m, double t, const double* y);
   bool FactorMatrix(Mode& m, double a);
   bool Newton(Mode& m, double t_new, double a, const double* c, double* y, double* fy,
@@ -193,6 +195,7 @@ class Component {
   // last evaluated.
   double SpectralRadius(const Mode& m);
   bool InitialImplicit(double t);
+  double RestSpan(const Mode& m, double h);
   void Restart();
   bool PendingRestart() const;
   double NextBreakpoint(double t) const;
@@ -207,6 +210,7 @@ class Component {
   Simulation& sim_;
   const physics::EquationSystem& sys_;
   std::unique_ptr<physics::JointSolver> joints_;  // exact links among our bodies
+  bool points_autonomous_ = true;  // no joint holds a body on a moving point
   int index_;
   std::vector<int> vars_;
   std::vector<int> inputs_;

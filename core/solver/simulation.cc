@@ -70,6 +70,11 @@ Simulation::Simulation(const physics::EquationSystem& system, SolverOptions opti
     for (size_t j = 0; j < vars.size(); ++j) local_index_[vars[j]] = static_cast<int>(j);
     components_.push_back(std::make_unique<Component>(*this, static_cast<int>(c), vars));
   }
+  joints_of_.assign(partition_.components.size(), {});
+  for (size_t j = 0; j < sys_.joints.size(); ++j) {
+    const int v = sys_.bodies[sys_.joints[j].body_a].first_var;
+    if (v >= 0) joints_of_[partition_.component_of[v]].push_back(static_cast<int>(j));
+  }
   // Dependency order: each component after those it reads from.
   for (auto& comp : components_) comp->Initialize();
   stamp_.assign(components_.size(), 0);

@@ -100,6 +100,8 @@ class Simulation {
   int component_count() const { return static_cast<int>(components_.size()); }
   const Component& component(int c) const { return *components_[c]; }
   int component_of(int var) const { return partition_.component_of[var]; }
+  // Exact joints (indices into the system's joints) whose bodies component c holds.
+  const std::vector<int>& joints_of(int c) const { return joints_of_[c]; }
   // Index of `var` within its component's waveform.
   int local_index(int var) const { return local_index_[var]; }
   Counters totals() const;
@@ -178,6 +180,7 @@ class Simulation {
   SolverOptions options_;
   Partition partition_;
   std::vector<int> local_index_;  // variable → index within its component
+  std::vector<std::vector<int>> joints_of_;  // per component
   std::vector<std::unique_ptr<Component>> components_;
   std::vector<double> values_;
   expr::ExternFn externs_;
