@@ -9,14 +9,17 @@
 // (time, handles, playing) or the document (recompute: re-simulate and
 // refresh the poster frame), then the same output step writes the result.
 // Like the asgard CLI: usage problems print the help and exit 2; a document
-// that cannot be read or an output that cannot be written exits 1; an
-// animation that fails is a warning and its poster and status are shown.
+// that cannot be read or an output that cannot be written exits 1.  An
+// animation that fails is a warning on stderr, its poster and status are
+// shown, and the exit status is 3 (kExitIncomplete): OUT was written but is
+// not everything IN asks for.
 #include <unistd.h>
 
 #include <cmath>
 #include <cstdio>
 #include <iostream>
 #include <optional>
+#include <set>
 #include <string>
 #include <vector>
 
@@ -32,6 +35,11 @@ namespace asgard::host {
 namespace {
 
 using document::Extension;
+
+// OUT was written, but something in it is not what IN asks for (an animation
+// shown by its poster or a placeholder, a part of IN ignored); stderr says
+// what.
+constexpr int kExitIncomplete = 3;
 
 const char* const kHelp = R"(Usage: dochost convert IN -o OUT [options]
        dochost verb IN VERB [ARGS] [options]
@@ -75,11 +83,22 @@ Options:
   --core PATH          the asgard-core slave program (default: beside the
                        plugin, or $ASGARD_CORE)
   --timeout S          watchdog: longest silence from a slave (default 60)
-  --quiet              no messages or progress bar
+  --slaves N           animations simulated at once (default 4): beyond them
+                       the slave used longest ago is stopped, and started
+                       again when its animation is drawn
+  --slave-memory MIB   memory of each slave process (default 2048); one that
+                       needs more ends, and its animation shows its poster
+  --quiet              no progress bar, notes or messages on stdout; warnings
+                       that change OUT are still printed
   -h, --help           this help
 
-Exit status 0 on success, 1 when IN cannot be read, OUT cannot be written or
-a verb fails, 2 on bad usage.
+A slave that dies while simulating or drawing is started again once; if it
+dies again, its animation is shown by its poster frame.
+
+Exit status 0 on success; 1 when IN cannot be read, OUT cannot be written or
+a verb fails; 2 on bad usage; 3 when OUT was written but is not all that IN
+asks for: an animation shown by its poster or a placeholder, or a part of IN
+ignored (each said on stderr).
 )";
 
 struct Options {
@@ -87,8 +106,8 @@ struct Options {
   std::vector<std::string> verb_args, plugin_path;
   std::string core;
   std::optional<double> time, from, to;
-  double timeout = 0, dpi = 96;
-  int animation = 1;
+  double timeout = 0, dpi = 96, slave_memory = 0;
+  int animation = 1, slaves = kDefaultMaxSlaves;
   bool handles = false, quiet = false;
 };
 
@@ -123,6 +142,14 @@ std::optional<int> Parse(const std::vector<std::string>& args, Options& o) {
     } else if (a == "--dpi") {
       if (!number(d) || d < 10 || d > 1200) return Usage("--dpi needs a number from 10 to 1200");
       o.dpi = d;
+    } else if (a == "--slaves") {
+      if (!number(d) || d < 1 || d > 64 || d != std::floor(d))
+        return Usage("--slaves needs a whole number from 1 to 64");
+      o.slaves = static_cast<int>(d);
+    } else if (a == "--slave-memory") {
+      if (!number(d) || d < 64 || d > 1 << 20)
+        return Usage("--slave-memory needs a number of MiB from 64 to 1048576");
+      o.slave_memory = d;
     } else if (a == "--animation") {
       if (!number(d) || d < 1 || d != std::floor(d)) return Usage("--animation needs N >= 1");
       o.animation = static_cast<int>(d);
@@ -185,15 +212,44 @@ struct Host {
   std::unique_ptr<MediumRegistry> registry;
   std::unique_ptr<HostDocument> doc;
 
-  void Warn(const std::string& m) const {
+  bool incomplete = false;      // a warning changed OUT: exit kExitIncomplete
+  std::set<int> reported;       // items whose failure is on stderr
+  std::set<int> noted_restart;  // items whose restart is on stderr
+
+  // Something OUT shows otherwise than IN asks: always said, and the exit
+  // status says so too.
+  void Warn(const std::string& m) {
+    incomplete = true;
+    std::cerr << "dochost: " << m << "\n";
+  }
+  // Nothing is missing from OUT (a slave started again, say).
+  void Note(const std::string& m) const {
     if (!o.quiet) std::cerr << "dochost: " << m << "\n";
   }
-  void Report(const Embedded& item) const {
-    Warn(o.in + ": animation " + std::to_string(item.index) + ": " + item.message);
+  std::string Where(const Embedded& item) const {
+    return o.in + ": animation " + std::to_string(item.index) + ": ";
+  }
+  // Once per item: why it is shown by its poster or a placeholder.
+  void Report(const Embedded& item) {
+    if (reported.insert(item.index).second) Warn(Where(item) + item.message);
+  }
+  // Once per item: that its slave died and was started again.
+  void NoteRestart(const Embedded& item) {
+    if (item.restarted && noted_restart.insert(item.index).second)
+      Note(Where(item) + item.restart_reason + "; it was restarted once");
+  }
+  // Simulated (again, when its slave was stopped to make room); false,
+  // reported, when it cannot be.
+  bool Ready(Embedded& item) {
+    if (!item.medium) return false;
+    const bool ok = item.simulated || doc->Simulate(item);
+    NoteRestart(item);
+    if (!ok) Report(item);
+    return ok;
   }
   void SimulateAll() {
     for (Embedded& item : doc->items())
-      if (item.medium && !item.simulated && !doc->Simulate(item)) Report(item);
+      if (item.medium) Ready(item);
   }
   double TimeFor(const Embedded& item) const {
     return std::clamp(o.time.value_or(item.t0), item.t0, std::max(item.t0, item.t1));
@@ -214,17 +270,23 @@ struct Host {
   }
 
   std::vector<RegionContent> Regions() {
-    std::vector<RegionContent> regions;
-    for (Embedded& item : doc->items()) {
-      RegionContent r;
+    auto& items = doc->items();
+    std::vector<RegionContent> regions(items.size());
+    // Last first: the slaves still running (the last ones simulated) draw
+    // before they are stopped to make room for the earlier ones again.
+    for (size_t k = items.size(); k-- > 0;) {
+      Embedded& item = items[k];
+      RegionContent& r = regions[k];
       bool live = false;
       const double t = TimeFor(item);
-      if (item.simulated)
+      if (Ready(item)) {
         r.picture = doc->Frame(item, ASGARD_DEVICE_PAGE, item.width * 2, item.height * 2, t,
                                Flags(), &live);
+        NoteRestart(item);
+        if (!live) Report(item);
+      }
       if (r.picture.empty()) r.picture = item.poster;
       r.caption = Caption(item, live, t);
-      regions.push_back(std::move(r));
     }
     return regions;
   }
@@ -234,7 +296,7 @@ struct Host {
     a.width = item.width;
     a.height = item.height;
     a.scene = item.text;
-    if (item.simulated) {
+    if (Ready(item)) {
       // A page holds every frame as a PNG: no more than the usual rate.
       const double rate = std::min(item.frame_rate, protocol::kDefaultFrameRate);
       int n = static_cast<int>(std::floor((item.t1 - item.t0) * rate + 1e-9)) + 1;
@@ -256,9 +318,7 @@ struct Host {
         if (a.times[k] <= poster_t + 1e-9) a.poster = static_cast<int>(k);
       }
       a.live = all_live;
-      if (item.restarted)
-        Warn(o.in + ": animation " + std::to_string(item.index) + ": " + item.restart_reason +
-             "; it was restarted once");
+      NoteRestart(item);
       if (!all_live) Report(item);  // the page falls back to the poster: say why
     }
     if (!a.live) {
@@ -291,7 +351,6 @@ struct Host {
       if (!o.quiet) std::cout << o.in << ": wrote " << out << "\n";
       return 0;
     }
-    SimulateAll();
     if (ext == "html") {
       std::vector<HtmlAnimation> animations;
       for (Embedded& item : doc->items()) animations.push_back(Html(item));
@@ -308,6 +367,7 @@ struct Host {
     }
     if (ext != "pdf" && ext != "png")
       return Usage("OUT must end in .pdf, .png, .html, .xml or .ens");
+    SimulateAll();  // the pages need every animation's size
     const auto pages = Paginate(Blocks(*doc), *doc);
     const auto regions = Regions();
     std::vector<std::string> written;
@@ -322,6 +382,10 @@ struct Host {
     return 0;
   }
 
+  // A verb's or Write's status, kExitIncomplete when it succeeded with
+  // warnings that changed OUT.
+  int Status(int status) const { return status == 0 && incomplete ? kExitIncomplete : status; }
+
   int Fail(const std::string& message) const {
     std::cerr << "dochost: " << message << "\n";
     return 1;
@@ -331,8 +395,9 @@ struct Host {
 int RunVerb(Host& h) {
   Options& o = h.o;
   auto& items = h.doc->items();
-  if (o.verb == "status") {
-    h.SimulateAll();
+  if (o.verb == "status") {  // a failing animation is an answer here, not a warning
+    for (Embedded& item : items)
+      if (item.medium && !item.simulated) h.doc->Simulate(item);
     for (Embedded& item : items)
       std::cout << "animation " << item.index << " <" << item.element << ">: " << item.message
                 << "\n";
@@ -344,13 +409,7 @@ int RunVerb(Host& h) {
   Embedded& item = items[static_cast<size_t>(o.animation - 1)];
   if (!item.medium)
     return h.Fail(o.in + ": animation " + std::to_string(item.index) + ": " + item.message);
-  auto need_simulated = [&]() {
-    if (!item.simulated && !h.doc->Simulate(item)) {
-      h.Report(item);
-      return false;
-    }
-    return true;
-  };
+  auto need_simulated = [&]() { return h.Ready(item); };
   if (o.verb == "restart") {
     // Only the slave process: the document is written only to -o OUT.
     if (!h.doc->Restart(item))
@@ -468,14 +527,16 @@ int Main(const std::vector<std::string>& args) {
   HostOptions ho;
   ho.slave_path = o.core;
   ho.timeout_seconds = o.timeout;
+  ho.max_slaves = o.slaves;
+  ho.slave_memory_mb = o.slave_memory;
   ho.name = o.in;
   ProgressBar bar(!o.quiet && isatty(STDERR_FILENO));
   ho.progress = [&bar](const Embedded& item, double f) { bar(item, f); };
   std::vector<std::string> warnings;
   h.doc = std::make_unique<HostDocument>(std::move(*loaded.document), *h.registry, ho, &warnings);
   for (const auto& w : warnings) h.Warn(w);
-  if (o.command == "convert") return h.Write(o.out);
-  return RunVerb(h);
+  if (o.command == "convert") return h.Status(h.Write(o.out));
+  return h.Status(RunVerb(h));
 }
 
 }  // namespace

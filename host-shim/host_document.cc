@@ -11,6 +11,7 @@
 
 #include <cairo.h>
 
+#include <algorithm>
 #include <cstring>
 
 #include "formats/document/file.h"
@@ -156,11 +157,39 @@ HostDocument::HostDocument(document::Document doc, MediumRegistry& registry, Hos
 }
 
 HostDocument::~HostDocument() {
-  for (Embedded& item : items_) {
-    if (!item.medium) continue;
-    for (auto& [device, r] : item.renditions)
-      if (item.medium->rendition()) item.medium->rendition()->destroy(r);
-    if (item.node) item.medium->node()->destroy(item.node);
+  for (Embedded& item : items_) StopNode(item);
+}
+
+void HostDocument::StopNode(Embedded& item) {
+  if (!item.medium) return;
+  for (auto& [device, r] : item.renditions)
+    if (item.medium->rendition()) item.medium->rendition()->destroy(r);
+  item.renditions.clear();
+  item.rendition_sizes.clear();
+  if (!item.node) return;
+  item.medium->node()->destroy(item.node);
+  item.node = nullptr;
+  item.stopped = true;
+  item.simulated = false;
+}
+
+int HostDocument::running_slaves() const {
+  int n = 0;
+  for (const Embedded& item : items_) n += item.node != nullptr;
+  return n;
+}
+
+void HostDocument::MakeRoom(const Embedded& keep) {
+  const int most = std::max(1, options_.max_slaves);
+  while (running_slaves() >= most) {
+    Embedded* oldest = nullptr;
+    for (Embedded& item : items_)
+      if (item.node && &item != &keep && (!oldest || item.last_use < oldest->last_use))
+        oldest = &item;
+    if (!oldest) return;
+    StopNode(*oldest);
+    oldest->message = "stopped to keep " + std::to_string(most) +
+                      " animations running; it simulates again when drawn";
   }
 }
 
@@ -256,6 +285,7 @@ void HostDocument::RefreshStatus(Embedded& item) {
 
 bool HostDocument::EnsureNode(Embedded& item) {
   if (!item.medium) return false;
+  item.last_use = ++clock_;
   if (item.node) return true;
   const asgard_node_v1* api = item.medium->node();
   if (!api) {
@@ -266,6 +296,8 @@ bool HostDocument::EnsureNode(Embedded& item) {
   o.struct_size = sizeof o;
   o.slave_path = options_.slave_path.empty() ? nullptr : options_.slave_path.c_str();
   o.timeout_seconds = options_.timeout_seconds;
+  o.slave_memory_mb = options_.slave_memory_mb;
+  MakeRoom(item);
   const std::string name = options_.name + ": animation " + std::to_string(item.index);
   o.name = name.c_str();
   asgard_error e{};
@@ -290,6 +322,14 @@ void Relay(void* user, double fraction, const char*) {
 }  // namespace
 
 bool HostDocument::Simulate(Embedded& item) {
+  if (SimulateOnce(item)) return true;
+  if (item.status.state != ASGARD_NODE_CRASHED || item.restarted) return false;
+  item.restarted = true;
+  item.restart_reason = item.message;
+  return Restart(item);
+}
+
+bool HostDocument::SimulateOnce(Embedded& item) {
   if (!EnsureNode(item)) return false;
   std::pair<const HostOptions*, const Embedded*> user(&options_, &item);
   asgard_error e{};
@@ -344,7 +384,10 @@ Picture HostDocument::Frame(Embedded& item, int device, int width, int height, d
                             uint32_t flags, bool* live) {
   if (live) *live = false;
   const asgard_rendition_v1* api = item.medium ? item.medium->rendition() : nullptr;
+  // A slave stopped to make room for others simulates again.
+  if (api && !item.node && item.stopped && !Simulate(item)) return item.poster;
   if (!api || !item.node) return item.poster;
+  item.last_use = ++clock_;
   auto it = item.renditions.find(device);
   if (it != item.renditions.end() &&
       item.rendition_sizes[device] != std::make_pair(width, height)) {

@@ -57,8 +57,10 @@ struct Embedded {
   std::string message;            // status line for captions
   int width = 360, height = 240;  // presentation's desired size, points
   bool simulated = false;
-  bool restarted = false;      // the slave died while drawing and was restarted once
+  bool restarted = false;      // the slave died and was restarted once
   std::string restart_reason;  // how it died then
+  bool stopped = false;        // its slave was stopped to make room for another's
+  long last_use = 0;           // when its node was last used (HostDocument's clock)
   double t0 = 0, t1 = 0, frame_rate = protocol::kDefaultFrameRate;
   Picture poster;  // from the document or the last frame drawn
   bool poster_from_document = false;
@@ -66,10 +68,19 @@ struct Embedded {
   std::map<int, std::pair<int, int>> rendition_sizes;
 };
 
+// Slaves running at once by default.  Each maps its shared frame memory (a
+// largest rendition, 256 MiB) in the host too, so 500 animations must not
+// mean 500 slaves at once.
+inline constexpr int kDefaultMaxSlaves = 4;
+
 struct HostOptions {
   std::string slave_path;      // empty: the medium's default
   double timeout_seconds = 0;  // 0: the medium's default
-  std::string name;            // for messages: the file name
+  double slave_memory_mb = 0;  // address space of each slave; 0: the medium's default
+  // Starting a slave beyond this many stops the one used longest ago; its
+  // item simulates again when it is drawn next.
+  int max_slaves = kDefaultMaxSlaves;
+  std::string name;  // for messages: the file name
   // Simulation progress: (item, fraction).
   std::function<void(const Embedded&, double)> progress;
 };
@@ -90,9 +101,13 @@ class HostDocument {
   const std::vector<Embedded>& items() const { return items_; }
   const Embedded* ItemAt(const std::vector<size_t>& path) const;
 
-  // Starts the node (when needed) and simulates.  False with item.message set
-  // on any failure; the host goes on.
+  // Starts the node (when needed) and simulates; a slave that dies while
+  // simulating is restarted once (one that cannot start, or dies loading the
+  // text, is not: it has no node to restart).  False with item.message set on
+  // any failure; the host goes on.
   bool Simulate(Embedded& item);
+  // Slaves running now (at most HostOptions::max_slaves).
+  int running_slaves() const;
   // New medium text: stored in the document (storage encode) and the node
   // updated (re-simulated).
   bool SetText(Embedded& item, const std::string& text);
@@ -113,12 +128,18 @@ class HostDocument {
   document::Node* NodeAt(const std::vector<size_t>& path);
   void FindItems(std::vector<std::string>* warnings);
   bool EnsureNode(Embedded& item);
+  bool SimulateOnce(Embedded& item);
+  // Stops the slave of the item used longest ago (not `keep`) while as many
+  // as max_slaves run.
+  void MakeRoom(const Embedded& keep);
+  void StopNode(Embedded& item);
   void Fail(Embedded& item, const asgard_error& error);
 
   document::Document doc_;
   MediumRegistry& registry_;
   HostOptions options_;
   std::vector<Embedded> items_;
+  long clock_ = 0;  // counts node uses, for Embedded::last_use
 };
 
 }  // namespace asgard::host

@@ -16,6 +16,7 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <cstddef>
 #include <cstring>
 #include <memory>
 #include <string>
@@ -37,6 +38,7 @@ struct asgard_node {
   std::string name;
   std::string slave_path;
   double timeout = 60.0;
+  int memory_mib = asgard::protocol::kDefaultSlaveMemoryMiB;
   std::unique_ptr<SlaveProcess> slave;
   int generation = 0;
   int32_t state = ASGARD_NODE_LOADED;
@@ -207,7 +209,7 @@ int32_t Load(asgard_node* node, asgard_error* error) {
 
 int32_t Start(asgard_node* node, asgard_error* error) {
   node->slave.reset();
-  node->slave = std::make_unique<SlaveProcess>(node->slave_path, node->timeout);
+  node->slave = std::make_unique<SlaveProcess>(node->slave_path, node->timeout, node->memory_mib);
   ++node->generation;
   node->next_offset = 0;
   if (!node->slave->running()) {
@@ -264,6 +266,12 @@ int32_t NodeCreate(const char* text, size_t size, const asgard_node_options* opt
     node->slave_path = FindSlave(options);
     if (options && options->timeout_seconds > 0) node->timeout = options->timeout_seconds;
     if (options && options->name) node->name = options->name;
+    // A host built before slave_memory_mb passes a shorter struct.
+    if (options &&
+        options->struct_size >=
+            offsetof(asgard_node_options, slave_memory_mb) + sizeof options->slave_memory_mb &&
+        options->slave_memory_mb > 0)
+      node->memory_mib = static_cast<int>(std::clamp(options->slave_memory_mb, 16.0, 1e6));
     const int32_t s = Start(node.get(), error);
     // A node whose text has errors still exists (it can be updated).
     if (s != ASGARD_OK && s != ASGARD_ERR_SCENE) return s;

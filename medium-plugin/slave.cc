@@ -52,7 +52,7 @@ std::string Seconds(double s) {
 
 }  // namespace
 
-SlaveProcess::SlaveProcess(const std::string& program, double timeout_seconds)
+SlaveProcess::SlaveProcess(const std::string& program, double timeout_seconds, int memory_mib)
     : timeout_(timeout_seconds), program_(program) {
   int sv[2];
   if (::socketpair(AF_UNIX, SOCK_STREAM | SOCK_CLOEXEC, 0, sv) != 0) {
@@ -77,7 +77,9 @@ SlaveProcess::SlaveProcess(const std::string& program, double timeout_seconds)
   posix_spawn_file_actions_adddup2(&actions, shm_fd_, 4);
   posix_spawn_file_actions_addopen(&actions, 0, "/dev/null", O_RDONLY, 0);
   const std::string size = std::to_string(kFrameMemory);
-  std::vector<std::string> args = {program_, "--fd", "3", "--shm-fd", "4", "--shm-size", size};
+  std::vector<std::string> args = {program_,   "--fd",     "3",
+                                   "--shm-fd", "4",        "--shm-size",
+                                   size,       "--memory", std::to_string(memory_mib)};
   std::vector<char*> argv;
   for (auto& a : args) argv.push_back(a.data());
   argv.push_back(nullptr);

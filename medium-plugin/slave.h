@@ -46,9 +46,10 @@ struct CallResult {
 
 class SlaveProcess {
  public:
-  // Starts `program --fd 3 --shm-fd 4 --shm-size N`.  On failure running()
-  // is false and error() says why.
-  SlaveProcess(const std::string& program, double timeout_seconds);
+  // Starts `program --fd 3 --shm-fd 4 --shm-size N --memory MIB`.  On
+  // failure running() is false and error() says why.
+  SlaveProcess(const std::string& program, double timeout_seconds,
+               int memory_mib = protocol::kDefaultSlaveMemoryMiB);
   ~SlaveProcess();  // asks politely (shutdown), then SIGKILL, then reaps
   SlaveProcess(const SlaveProcess&) = delete;
   SlaveProcess& operator=(const SlaveProcess&) = delete;

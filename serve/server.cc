@@ -306,26 +306,32 @@ json Hub::Handle(const std::string& method, const json& params,
     return json{{"state", state}, {"simulated", sim}};
   };
   if (method == "open") return Open();
+  // Members a request must have are looked up (and a missing one thrown)
+  // before any braced list is built: an exception from inside one, while
+  // its elements were being made, read them after their scope under GCC 12
+  // (AddressSanitizer's stack-use-after-scope on a create without a command).
   if (method == "set_parameter") {
-    json r = Call("edit", {{"element", params.at("element")},
-                           {"param", params.at("param")},
-                           {"values", params.at("values")}});
+    const json& element = params.at("element");
+    const json& param = params.at("param");
+    const json& values = params.at("values");
+    json r = Call("edit", {{"element", element}, {"param", param}, {"values", values}});
     text_ = r.value("text", text_);
     state_stale_ = true;
     Broadcast({{"event", "text"},
                {"text", text_},
                {"edits", r["edits"]},
-               {"element", params.at("element")},
-               {"param", params.at("param")},
-               {"values", params.at("values")},
+               {"element", element},
+               {"param", param},
+               {"values", values},
                {"view", params.value("view", "")}});
     return r;
   }
   if (method == "create" || method == "delete") {
     // A new element's command (or one removed) through the session, so
     // that undo covers it; then as an update.
-    json r = method == "create" ? Call("create", {{"command", params.at("command")}})
-                                : Call("delete", {{"element", params.at("element")}});
+    const std::string key = method == "create" ? "command" : "element";
+    const json& arg = params.at(key);
+    json r = Call(method, {{key, arg}});
     json out = after_text_change(json::array());
     out["edits"] = r["edits"];
     return out;

@@ -28,9 +28,11 @@
 // with bytes that are not JSON; "exit-on-load" exits at the first load.
 #include <fcntl.h>
 #include <sys/mman.h>
+#include <sys/resource.h>
 #include <sys/stat.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -59,13 +61,18 @@ using namespace asgard;
 using protocol::kMaxMessage;
 using enum protocol::ErrorCode;
 
-const char* const kHelp = R"(Usage: asgard-core [--fd N] [--shm-fd N --shm-size BYTES]
+const char* const kHelp =
+    R"(Usage: asgard-core [--fd N] [--shm-fd N --shm-size BYTES] [--memory MIB]
 
 The slave process of the Asgard document medium: it is started by the medium
 plugin (dochost) for one animation subdocument and answers length-prefixed
 JSON-RPC 2.0 requests (a 4-byte big-endian length, then the JSON text) on the
 socket N (default: requests on standard input, answers on standard output).
 Frames are written as RGBA into the shared memory object inherited as --shm-fd.
+--memory limits the process's data segment (RLIMIT_DATA) to MIB mebibytes: an
+allocation past it fails and the slave ends (exit status 3) instead of
+starving the host.  Builds with AddressSanitizer ignore it (the sanitizer's
+shadow memory alone is larger).
 
 Methods: load {text}, update {text}, simulate {}, edit {element, param,
 values}, undo {}, redo {}, scene_state {}, meshes {}, poses {} (the
@@ -548,11 +555,25 @@ bool ParseSize(const char* s, long long& out) {
   return end && *end == '\0' && out >= 0;
 }
 
+// False (errno set) when the limit cannot be set.
+bool LimitMemory(long long mib) {
+#ifdef ASGARD_SANITIZERS
+  return true;  // the sanitizer's shadow memory alone is past any limit
+#endif
+  if (mib <= 0) return true;
+  const rlim_t bytes = static_cast<rlim_t>(mib) << 20;
+  struct rlimit r {};
+  if (::getrlimit(RLIMIT_DATA, &r) != 0) return false;
+  // Never above a hard limit the process already has.
+  r.rlim_cur = r.rlim_max == RLIM_INFINITY ? bytes : std::min<rlim_t>(bytes, r.rlim_max);
+  return ::setrlimit(RLIMIT_DATA, &r) == 0;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
   int in = STDIN_FILENO, out = STDOUT_FILENO;
-  long long shm_fd = -1, shm_size = 0;
+  long long shm_fd = -1, shm_size = 0, memory_mib = 0;
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
     long long v = 0;
@@ -560,18 +581,25 @@ int main(int argc, char** argv) {
       std::cout << kHelp;
       return 0;
     }
-    if ((a == "--fd" || a == "--shm-fd" || a == "--shm-size") && i + 1 < argc &&
+    if ((a == "--fd" || a == "--shm-fd" || a == "--shm-size" || a == "--memory") && i + 1 < argc &&
         ParseSize(argv[i + 1], v)) {
       ++i;
       if (a == "--fd")
         in = out = static_cast<int>(v);
       else if (a == "--shm-fd")
         shm_fd = v;
+      else if (a == "--memory")
+        memory_mib = v;
       else
         shm_size = v;
       continue;
     }
     std::cerr << "asgard-core: bad argument '" << a << "'\n\n" << kHelp;
+    return 2;
+  }
+  if (!LimitMemory(memory_mib)) {
+    std::cerr << "asgard-core: cannot limit memory to " << memory_mib
+              << " MiB: " << std::strerror(errno) << "\n";
     return 2;
   }
   uint8_t* shm = nullptr;

@@ -82,8 +82,8 @@ json Meshes(const render::SceneSampler& sampler) {
   for (const auto& b : sampler.bodies()) {
     json pieces = json::array();
     for (const auto& p : b.pieces) {
-      json piece = {{"color", {p.color.r, p.color.g, p.color.b}}};
-      if (p.sphere) {
+      json piece = {{"color", {p.rgb.r, p.rgb.g, p.rgb.b}}};
+      if (p.is_sphere) {
         piece["sphere"] = true;
         piece["center"] = Vec(p.center);
         piece["radius"] = Round(p.radius);

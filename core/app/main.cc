@@ -164,19 +164,9 @@ bool WriteCsv(const std::string& path, const Frames& frames) {
 }
 
 nlohmann::json CountersJson(const asgard::solver::Counters& c) {
-  return {{"steps", c.steps},
-          {"rejected_steps", c.rejected_steps},
-          {"trbdf2_steps", c.trbdf2_steps},
-          {"explicit_steps", c.explicit_steps},
-          {"method_switches", c.method_switches},
-          {"rhs_evaluations", c.rhs_evaluations},
-          {"jacobian_evaluations", c.jacobian_evaluations},
-          {"factorizations", c.factorizations},
-          {"newton_iterations", c.newton_iterations},
-          {"newton_failures", c.newton_failures},
-          {"truncated_steps", c.truncated_steps},
-          {"restarts", c.restarts},
-          {"rest_steps", c.rest_steps}};
+  nlohmann::json j = nlohmann::json::object();
+  for (const auto& f : asgard::solver::kCounterFields) j[f.name] = c.*f.member;
+  return j;
 }
 
 bool WriteJson(const std::string& path, const std::string& scene_file, const Frames& frames,

@@ -49,6 +49,12 @@ inline constexpr double kDefaultFrameRate = 30.0;
 // of the protocol is deeper than a handful of levels.
 inline constexpr int kMaxJsonDepth = 64;
 
+// Memory a slave may take (its data segment, asgard-core --memory) unless
+// the host asks otherwise: the scene language's 512 MiB and the solver's
+// work with OSMesa's buffers beside them, with room; a runaway slave then
+// dies alone (and is restarted once) instead of starving the host.
+inline constexpr int kDefaultSlaveMemoryMiB = 2048;
+
 // The deepest nesting of '[' and '{' in a JSON text, outside strings (a
 // linear scan, no recursion); stops counting once past `stop_at`.
 inline int JsonNestingDepth(std::string_view text, int stop_at = kMaxJsonDepth) {

@@ -12,7 +12,7 @@ namespace asgard::render {
 
 Mesh PieceMesh(const Piece& piece, int slices) {
   Mesh m;
-  if (!piece.sphere) {
+  if (!piece.is_sphere) {
     for (const auto& hull_face : piece.hull.faces) {
       const auto& face = hull_face.vertices;
       if (face.size() < 3) continue;

@@ -145,12 +145,8 @@ SceneSampler::SceneSampler(const scene::Scene& scene, const physics::EquationSys
     }
     Eigen::Vector3d lo = Eigen::Vector3d::Constant(1e300), hi = -lo;
     for (const auto& bp : m.pieces) {
-      Piece p;
-      p.sphere = bp.is_sphere;
-      p.center = bp.center;
-      p.radius = bp.radius;
-      if (!p.sphere) {
-        p.hull = bp.hull;
+      Piece p{bp, {}};
+      if (!p.is_sphere) {
         for (const auto& v : p.hull.vertices) lo = lo.cwiseMin(v), hi = hi.cwiseMax(v);
       } else {
         lo = lo.cwiseMin((p.center.array() - p.radius).matrix());
@@ -161,13 +157,13 @@ SceneSampler::SceneSampler(const scene::Scene& scene, const physics::EquationSys
         c = ParseColor(bp.color);
         if (!c) unknown_colors_.push_back(bp.color);
       }
-      p.color = c.value_or(PaletteColor(static_cast<int>(b)));
+      p.rgb = c.value_or(PaletteColor(static_cast<int>(b)));
       shape.pieces.push_back(std::move(p));
     }
     if (!shape.pieces.empty()) {
       shape.bound_center = (lo + hi) / 2;
       for (const auto& p : shape.pieces) {
-        if (p.sphere)
+        if (p.is_sphere)
           shape.bound_radius =
               std::max(shape.bound_radius, (p.center - shape.bound_center).norm() + p.radius);
         for (const auto& v : p.hull.vertices)

@@ -17,20 +17,19 @@
 #include <vector>
 
 #include "core/geometry/geometry.h"
+#include "core/physics/equations.h"
 #include "core/pipeline/pipeline.h"
 #include "core/render/color.h"
 #include "core/render/view.h"
 
 namespace asgard::render {
 
-// One convex piece in body coordinates: a sphere, or the hull physics
-// computed (vertices, CCW triangles, merged faces with outward normals).
-struct Piece {
-  bool sphere = false;
-  Eigen::Vector3d center = Eigen::Vector3d::Zero();  // sphere
-  double radius = 0.0;                               // sphere
-  geometry::ConvexHull hull;                         // when not a sphere
-  Rgb color;
+// One convex piece in body coordinates as physics built it (a sphere, or
+// its hull: vertices, CCW triangles, merged faces with outward normals),
+// with the colour it is drawn in: the body's, else the piece's, else the
+// palette's.
+struct Piece : physics::BodyPiece {
+  Rgb rgb;  // drawn in; `color` is the name the scene gave the piece, if any
 };
 
 struct BodyShape {

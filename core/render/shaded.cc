@@ -45,7 +45,7 @@ struct ShadedRenderer::Impl {
     for (const auto& b : bodies) {
       std::vector<PieceDraw> draws;
       for (const auto& p : b.pieces) {
-        draws.push_back({PieceMesh(p, style.sphere_slices), SurfaceColor(p.color)});
+        draws.push_back({PieceMesh(p, style.sphere_slices), SurfaceColor(p.rgb)});
       }
       meshes.push_back(std::move(draws));
     }

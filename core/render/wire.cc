@@ -85,8 +85,8 @@ void DrawBodies(cairo_t* cr, const FrameInput& f, double lw) {
   for (size_t b = 0; b < bodies.size(); ++b) {
     const Pose& pose = f.poses[b];
     for (const auto& piece : bodies[b].pieces) {
-      SetColor(cr, piece.color);
-      if (piece.sphere) {
+      SetColor(cr, piece.rgb);
+      if (piece.is_sphere) {
         if (AddSphereOutline(cr, f.camera, pose.Apply(piece.center), piece.radius))
           cairo_stroke(cr);
         cairo_new_path(cr);

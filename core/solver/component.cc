@@ -86,19 +86,7 @@ constexpr double kMinFactor = 0.2, kMaxFactor = 10.0;
 }  // namespace
 
 Counters& Counters::operator+=(const Counters& o) {
-  steps += o.steps;
-  rejected_steps += o.rejected_steps;
-  trbdf2_steps += o.trbdf2_steps;
-  explicit_steps += o.explicit_steps;
-  method_switches += o.method_switches;
-  rhs_evaluations += o.rhs_evaluations;
-  jacobian_evaluations += o.jacobian_evaluations;
-  factorizations += o.factorizations;
-  newton_iterations += o.newton_iterations;
-  newton_failures += o.newton_failures;
-  truncated_steps += o.truncated_steps;
-  rest_steps += o.rest_steps;
-  restarts += o.restarts;
+  for (const CounterField& f : kCounterFields) this->*f.member += o.*f.member;
   return *this;
 }
 

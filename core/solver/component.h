@@ -112,6 +112,28 @@ struct Counters {
   Counters& operator+=(const Counters& o);
 };
 
+// Every counter with its name: the one list that sums and reports read.
+struct CounterField {
+  const char* name;
+  long Counters::*member;
+};
+inline constexpr CounterField kCounterFields[] = {
+    {"steps", &Counters::steps},
+    {"rejected_steps", &Counters::rejected_steps},
+    {"trbdf2_steps", &Counters::trbdf2_steps},
+    {"explicit_steps", &Counters::explicit_steps},
+    {"method_switches", &Counters::method_switches},
+    {"rhs_evaluations", &Counters::rhs_evaluations},
+    {"jacobian_evaluations", &Counters::jacobian_evaluations},
+    {"factorizations", &Counters::factorizations},
+    {"newton_iterations", &Counters::newton_iterations},
+    {"newton_failures", &Counters::newton_failures},
+    {"truncated_steps", &Counters::truncated_steps},
+    {"restarts", &Counters::restarts},
+    {"rest_steps", &Counters::rest_steps}};
+static_assert(sizeof(kCounterFields) / sizeof(kCounterFields[0]) * sizeof(long) == sizeof(Counters),
+              "every member of Counters is in kCounterFields");
+
 class Simulation;
 
 class Component {

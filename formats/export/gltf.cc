@@ -99,7 +99,7 @@ bool WriteGltf(const std::string& path, const StillScene& s, const std::vector<d
       const int an = b.Floats(nrm, 3, "VEC3", kArrayBuffer, false);
       const int iv = b.View(m.indices.data(), m.indices.size() * 4, kElementBuffer);
       const int ai = b.Accessor(iv, kUint, m.indices.size(), "SCALAR");
-      const render::Rgb c = render::SurfaceColor(piece.color);
+      const render::Rgb c = render::SurfaceColor(piece.rgb);
       const std::string key =
           std::to_string(c.r) + "," + std::to_string(c.g) + "," + std::to_string(c.b);
       auto [it, fresh] = material_index.emplace(key, static_cast<int>(materials.size()));

@@ -55,8 +55,8 @@ std::map<std::string, int> SurfaceIndex(const StillScene& s, std::vector<Rgb>& c
   std::map<std::string, int> index;
   for (const auto& b : s.sampler->bodies())
     for (const auto& p : b.pieces) {
-      const std::string key = Triple(p.color);
-      if (index.emplace(key, static_cast<int>(colors.size())).second) colors.push_back(p.color);
+      const std::string key = Triple(p.rgb);
+      if (index.emplace(key, static_cast<int>(colors.size())).second) colors.push_back(p.rgb);
     }
   return index;
 }
@@ -90,8 +90,8 @@ bool WriteRayshade(const std::string& path, const StillScene& s, std::string* er
   for (size_t b = 0; b < bodies.size(); ++b) {
     o << "/* body " << bodies[b].name << " */\n";
     for (const auto& p : bodies[b].pieces) {
-      const std::string surf = "s" + std::to_string(index.at(Triple(p.color)));
-      if (p.sphere) {
+      const std::string surf = "s" + std::to_string(index.at(Triple(p.rgb)));
+      if (p.is_sphere) {
         o << "sphere " << surf << " " << Num(p.radius) << " " << Triple(poses[b].Apply(p.center))
           << "\n";
         continue;
@@ -141,8 +141,8 @@ bool WritePovray(const std::string& path, const StillScene& s, std::string* erro
   for (size_t b = 0; b < bodies.size(); ++b) {
     o << "// body " << bodies[b].name << "\n";
     for (const auto& p : bodies[b].pieces) {
-      const std::string tex = "texture { S" + std::to_string(index.at(Triple(p.color))) + " }";
-      if (p.sphere) {
+      const std::string tex = "texture { S" + std::to_string(index.at(Triple(p.rgb))) + " }";
+      if (p.is_sphere) {
         o << "sphere { <" << Triple(poses[b].Apply(p.center), ", ") << ">, " << Num(p.radius) << " "
           << tex << " }\n";
         continue;

@@ -5,6 +5,9 @@
 #include <sys/wait.h>
 
 #include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
 #include <string>
 
 namespace asgard::testing {
@@ -23,6 +26,22 @@ inline Result Exec(const std::string& command) {
   const int s = pclose(p);
   r.status = WIFEXITED(s) ? WEXITSTATUS(s) : -1;
   return r;
+}
+
+// An empty folder `name` of the group's scratch folder in the build tree.
+inline std::filesystem::path ScratchFolder(const std::string& group, const std::string& name) {
+  const auto dir = std::filesystem::path(ASGARD_BINARY_DIR) / "tests/document" / group / name;
+  std::filesystem::remove_all(dir);
+  std::filesystem::create_directories(dir);
+  return dir;
+}
+
+// A whole file's bytes (empty when it cannot be read).
+inline std::string FileText(const std::filesystem::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::ostringstream s;
+  s << in.rdbuf();
+  return s.str();
 }
 
 }  // namespace asgard::testing

@@ -221,14 +221,22 @@ TEST(HostileDocuments, InvalidUtf8AndNulAreShownReplacedNotDropped) {
 // address-space limit, each problem is reported, and the rest is intact.
 TEST(HostileDocuments, TheHostileDocumentConvertsWithEveryProblemReported) {
   const fs::path dir = Scratch("hostile");
+  // Every command is tried (each under catch: one that worked would end the
+  // scene with "allowed: ..."), then the first again, uncaught, to be reported.
+  // A file to delete and one to create show that none had an effect.
+  const std::string victim = (dir / "victim").string(), pwned = (dir / "pwned").string();
+  std::ofstream(victim) << "still here";
   std::string scene =
       "shape_set s -desc \\{-sub \\{-sphere 0.5\\}\\}\n"
-      "body b -shape s\nsimulator -finish 1\n";
-  for (const char* cmd :
-       {"exec ls", "open /etc/passwd", "file delete x", "socket localhost 80", "source /etc/passwd",
-        "load libc.so", "cd /", "exit 3", "glob *", "pwd", "interp create x", "after 100000",
-        "vwait forever", "update", "fconfigure stdout", "encoding system", "unload x", "puts hi"})
-    scene += std::string(cmd) + "\n";
+      "body b -shape s\nsimulator -finish 1\nforeach c [list";
+  for (const std::string& cmd : std::vector<std::string>{
+           "exec touch " + pwned, "open " + pwned + " w", "file delete " + victim,
+           "socket localhost 80", "source " + victim, "load libc.so", "cd /", "exit 3", "glob *",
+           "pwd", "interp create x", "after 100000", "vwait forever", "update", "fconfigure stdout",
+           "encoding system", "unload x", "puts hi"})
+    scene += " \\{" + cmd + "\\}";
+  scene += "] \\{\n  if \\{![catch $c]\\} \\{ error \"allowed: $c\" \\}\n\\}\nexec touch " + pwned +
+           "\n";
   // A PNG header claiming 100000 x 100000 pixels (and nothing after it).
   std::string png = "\x89PNG\r\n\x1a\n";
   png += std::string("\0\0\0\x0dIHDR", 8);
@@ -256,12 +264,16 @@ TEST(HostileDocuments, TheHostileDocumentConvertsWithEveryProblemReported) {
   EXPECT_LT(std::chrono::steady_clock::now() - start, std::chrono::seconds(30));
   EXPECT_NE(r.status, -1) << r.out;
   EXPECT_NE(r.status, 124) << "timed out: " << r.out;
+  EXPECT_EQ(r.status, 3) << "the animation and the poster are left out: " << r.out;
   EXPECT_NE(r.out.find("hostile.ens:"), std::string::npos) << r.out;
   EXPECT_NE(r.out.find("<POSTER>: ignored: the picture is 100000 × 100000 pixels"),
             std::string::npos)
       << r.out;
   EXPECT_NE(r.out.find("animation 1:"), std::string::npos) << r.out;
   EXPECT_NE(r.out.find("not available in scene scripts"), std::string::npos) << r.out;
+  EXPECT_EQ(r.out.find("allowed:"), std::string::npos) << r.out;
+  EXPECT_EQ(Read(victim), "still here");
+  EXPECT_FALSE(fs::exists(pwned));
   Exit text = Exec("pdftotext " + (dir / "hostile.pdf").string() + " -");
   text.out = Collapsed(text.out);
   EXPECT_NE(text.out.find("Before the animation."), std::string::npos) << text.out;
@@ -287,6 +299,7 @@ TEST(HostileDocuments, ASlaveKilledDuringHtmlExportIsRestartedOnceAndReported) {
   // Dying again after the restart: the poster, and the reason on stderr.
   const Exit always =
       Exec("ASGARD_CORE_FAULT=exit-on-frame " + kDochost + " convert " + memo + " -o " + html);
+  EXPECT_EQ(always.status, 3) << "the page shows a poster, not the animation: " << always.out;
   EXPECT_NE(always.out.find("it was restarted once"), std::string::npos) << always.out;
   EXPECT_NE(always.out.find("dochost: " + memo + ": animation 1: asgard-core exited"),
             std::string::npos)

@@ -61,7 +61,7 @@ TEST(Rayshade, DescribesEveryPiece) {
     EXPECT_NE(text.find(key), std::string::npos) << key;
   size_t spheres = 0, polys = 0;
   for (const auto& b : s.sampler->bodies())
-    for (const auto& p : b.pieces) p.sphere ? ++spheres : polys += p.hull.faces.size();
+    for (const auto& p : b.pieces) p.is_sphere ? ++spheres : polys += p.hull.faces.size();
   EXPECT_EQ(Count(text, "\nsphere "), spheres);
   EXPECT_EQ(Count(text, "\npoly "), polys);
 }

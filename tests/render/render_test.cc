@@ -93,8 +93,8 @@ TEST(Sampler, PendulumPosesFramesAndOverlays) {
   SceneSampler s(run.scene, *run.equations, *run.simulation);
   ASSERT_EQ(s.bodies().size(), 3u);
   EXPECT_TRUE(s.unknown_colors().empty());
-  EXPECT_EQ(s.bodies()[0].pieces[0].color, (Rgb{0, 0, 0}));  // -color black faces
-  EXPECT_TRUE(s.bodies()[2].pieces[0].sphere);
+  EXPECT_EQ(s.bodies()[0].pieces[0].rgb, (Rgb{0, 0, 0}));  // -color black faces
+  EXPECT_TRUE(s.bodies()[2].pieces[0].is_sphere);
   EXPECT_EQ(s.FrameTimes().size(), 151u);  // 5 s at 30 frames per second, both ends
   EXPECT_DOUBLE_EQ(s.FrameTimes().back(), 5.0);
   // Poses are pipeline::SampleBody's.
@@ -153,7 +153,7 @@ lightsource -type point -pos {1 2 3} -color red -intensity 0.5
   ASSERT_TRUE(run.ok);
   SceneSampler s(run.scene, *run.equations, *run.simulation);
   ASSERT_EQ(s.unknown_colors().size(), 1u);
-  EXPECT_EQ(s.bodies()[0].pieces[0].color, PaletteColor(0));
+  EXPECT_EQ(s.bodies()[0].pieces[0].rgb, PaletteColor(0));
   const ViewState last = *s.SceneView();
   EXPECT_NEAR(last.rotation.angularDistance(
                   Eigen::Quaterniond(Eigen::AngleAxisd(M_PI / 2, Eigen::Vector3d::UnitY()))),

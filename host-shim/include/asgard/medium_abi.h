@@ -99,6 +99,9 @@ typedef struct asgard_node_options {
   const char* slave_path; /* NULL: the medium finds its slave program itself */
   double timeout_seconds; /* watchdog: longest silence from the slave; <= 0: default */
   const char* name;       /* for messages, e.g. "memo.ens: animation 1" */
+  /* Added later (read only when struct_size covers it): the slave's address
+   * space in MiB; <= 0: the medium's default. */
+  double slave_memory_mb;
 } asgard_node_options;
 
 typedef enum asgard_node_state {

@@ -1,0 +1,256 @@
+// dochost and its slaves under faults and load: a slave killed in the middle
+// of a conversion is started again once (then the poster), the exit status
+// says when OUT is not all the document asks, at most --slaves slaves run at
+// once however many animations a document has, and a slave past its memory
+// limit ends alone.  dochost runs as a child here while the test watches its
+// asgard-core children in /proc (and kills some).
+#include <fcntl.h>
+#include <gtest/gtest.h>
+#include <signal.h>
+#include <spawn.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <chrono>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <sstream>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include "tests/common/sanitizer.h"
+#include "tests/document/exec.h"
+
+extern char** environ;
+
+namespace {
+
+namespace fs = std::filesystem;
+using Clock = std::chrono::steady_clock;
+
+const std::string kDochost = std::string(ASGARD_BINARY_DIR) + "/host-shim/dochost";
+
+fs::path Scratch(const std::string& name) {
+  return asgard::testing::ScratchFolder("scratch_slaves", name);
+}
+using asgard::testing::FileText;
+
+size_t Count(const std::string& text, const std::string& word) {
+  size_t n = 0;
+  for (size_t at = 0; (at = text.find(word, at)) != std::string::npos; at += word.size()) ++n;
+  return n;
+}
+
+// A document of one paragraph and one animation per scene (scene braces
+// escaped for the document reader by the caller).
+std::string Document(const std::vector<std::string>& scenes) {
+  std::string d = "DOCUMENT ARTICLE\n<ARTICLE>\n<TITLE>{Slaves}</TITLE>\n<BODY>\n";
+  d += "<PARAGRAPH><TEXT>{The text before the animations.}</TEXT></PARAGRAPH>\n";
+  for (const std::string& s : scenes)
+    d += "<PARAGRAPH><DOCUMENT>\nDOCUMENT ANIMATION\n<ANIMATION>\n<ASGARD>{\n" + s +
+         "}</ASGARD>\n</ANIMATION>\n</DOCUMENT></PARAGRAPH>\n";
+  d +=
+      "<PARAGRAPH><TEXT>{The text after the animations.}</TEXT></PARAGRAPH>\n</BODY>\n</ARTICLE>\n";
+  return d;
+}
+
+const std::string kBall =
+    "simulator -finish 0.5 -frames 4\nshape_set ball -desc \\{-sub \\{-sphere 0.5\\}\\}\n"
+    "body b -shape ball -init_dpos \\{1 0 0\\}\n";
+// Two seconds or so of simulation on an idle machine (many small steps),
+// longer than a slave takes to start and load even under AddressSanitizer:
+// a kill after one second lands in the middle of the simulation.
+const std::string kLong =
+    "simulator -finish 15 -maxstep 0.0002 -collisions 0\n"
+    "shape_set ball -desc \\{-sub \\{-sphere 0.2\\}\\}\n"
+    "for \\{set i 0\\} \\{$i < 4\\} \\{incr i\\} \\{\n"
+    "  body b$i -shape ball -init_pos [list $i 0 0] -init_dpos \\{0 1 0\\}\n"
+    "  force -body b$i -y -9.8 -gravitational 1\n\\}\n";
+
+struct Watched {
+  int status = -1;  // exit status, -1 after a signal
+  std::string out;  // stdout and stderr
+  int most_running = 0;
+  int killed = 0;
+};
+
+// The live (not zombie) asgard-core children of `parent`.
+std::vector<pid_t> Slaves(pid_t parent) {
+  std::vector<pid_t> out;
+  for (const auto& e : fs::directory_iterator("/proc")) {
+    const std::string name = e.path().filename().string();
+    if (name.empty() || name.find_first_not_of("0123456789") != std::string::npos) continue;
+    std::ifstream stat(e.path() / "stat");
+    std::string line;
+    if (!std::getline(stat, line)) continue;
+    // pid (comm) state ppid ...: comm may hold spaces, so read after ')'.
+    const size_t close = line.rfind(')'), open = line.find('(');
+    if (close == std::string::npos || open == std::string::npos) continue;
+    std::istringstream rest(line.substr(close + 2));
+    char state = 0;
+    long ppid = 0;
+    rest >> state >> ppid;
+    if (ppid == parent && state != 'Z' && line.substr(open + 1, close - open - 1) == "asgard-core")
+      out.push_back(static_cast<pid_t>(std::stol(name)));
+  }
+  return out;
+}
+
+// Runs dochost with `args`, looking at its slaves every few milliseconds:
+// counts the most running at once, and kills (SIGKILL) each of the first
+// `kills` slaves once it has run for `kill_after`.
+Watched RunDochost(const std::vector<std::string>& args, const fs::path& log, int kills = 0,
+                   std::chrono::milliseconds kill_after = std::chrono::milliseconds(0)) {
+  Watched w;
+  std::vector<std::string> argv_s = {kDochost};
+  argv_s.insert(argv_s.end(), args.begin(), args.end());
+  std::vector<char*> argv;
+  for (auto& a : argv_s) argv.push_back(a.data());
+  argv.push_back(nullptr);
+  posix_spawn_file_actions_t actions;
+  posix_spawn_file_actions_init(&actions);
+  posix_spawn_file_actions_addopen(&actions, 1, log.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+  posix_spawn_file_actions_adddup2(&actions, 1, 2);
+  pid_t pid = -1;
+  const int rc = posix_spawn(&pid, kDochost.c_str(), &actions, nullptr, argv.data(), environ);
+  posix_spawn_file_actions_destroy(&actions);
+  if (rc != 0) {
+    ADD_FAILURE() << "cannot start dochost: " << rc;
+    return w;
+  }
+  std::map<pid_t, Clock::time_point> seen;
+  const auto deadline = Clock::now() + std::chrono::seconds(120);
+  int status = 0;
+  while (waitpid(pid, &status, WNOHANG) == 0) {
+    if (Clock::now() > deadline) {
+      kill(pid, SIGKILL);
+      waitpid(pid, &status, 0);
+      ADD_FAILURE() << "dochost did not end within 120 s";
+      break;
+    }
+    const std::vector<pid_t> slaves = Slaves(pid);
+    w.most_running = std::max(w.most_running, static_cast<int>(slaves.size()));
+    for (pid_t s : slaves) {
+      const auto first = seen.emplace(s, Clock::now()).first->second;
+      if (w.killed < kills && Clock::now() - first >= kill_after && kill(s, SIGKILL) == 0) {
+        ++w.killed;
+        seen[s] = Clock::time_point::max();  // once
+      }
+    }
+    std::this_thread::sleep_for(std::chrono::milliseconds(5));
+  }
+  w.status = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  w.out = FileText(log);
+  return w;
+}
+
+std::string PdfText(const fs::path& pdf) {
+  return asgard::testing::Exec("pdftotext " + pdf.string() + " -").out;
+}
+
+// Killed in the middle of the simulation a conversion waits for, the slave
+// is started again once and the page gets its frame (before, the animation
+// fell back to its poster, or to nothing, with exit status 0).
+TEST(Slaves, ASlaveKilledMidConversionIsRestartedOnce) {
+  const fs::path dir = Scratch("kill_once");
+  std::ofstream(dir / "long.ens") << Document({kLong});
+  const fs::path pdf = dir / "long.pdf";
+  const Watched w = RunDochost({"convert", (dir / "long.ens").string(), "-o", pdf.string()},
+                               dir / "log", 1, std::chrono::milliseconds(1000));
+  ASSERT_EQ(w.killed, 1) << "the slave ended before it could be killed: " << w.out;
+  EXPECT_EQ(w.status, 0) << w.out;
+  EXPECT_NE(w.out.find("animation 1: asgard-core killed by signal 9"), std::string::npos) << w.out;
+  EXPECT_NE(w.out.find("it was restarted once"), std::string::npos) << w.out;
+  const std::string text = PdfText(pdf);
+  EXPECT_NE(text.find("4 bodies, t = 0 .. 15 s"), std::string::npos) << text;
+  EXPECT_NE(text.find("frame at t = 0.00 s"), std::string::npos) << "a live frame: " << text;
+  EXPECT_NE(text.find("The text after the animations."), std::string::npos) << text;
+}
+
+// Killed again after its restart: the poster (here none: the caption says
+// why), the reason on stderr, and exit status 3, not 0.
+TEST(Slaves, ASlaveKilledTwiceFallsBackAndTheExitStatusSaysSo) {
+  const fs::path dir = Scratch("kill_twice");
+  std::ofstream(dir / "long.ens") << Document({kLong, kBall});
+  const fs::path pdf = dir / "long.pdf";
+  const Watched w = RunDochost({"convert", (dir / "long.ens").string(), "-o", pdf.string()},
+                               dir / "log", 2, std::chrono::milliseconds(1000));
+  ASSERT_EQ(w.killed, 2) << w.out;
+  EXPECT_EQ(w.status, 3) << w.out;
+  EXPECT_NE(w.out.find("it was restarted once"), std::string::npos) << w.out;
+  EXPECT_NE(w.out.find("dochost: " + (dir / "long.ens").string() +
+                       ": animation 1: asgard-core killed by signal 9"),
+            std::string::npos)
+      << w.out;
+  const std::string text = PdfText(pdf);
+  EXPECT_EQ(Count(text, "frame at t ="), 1u) << "only the second animation is live: " << text;
+  EXPECT_NE(text.find("Animation 1 · asgard-core killed by signal 9"), std::string::npos) << text;
+  EXPECT_NE(text.find("The text after the animations."), std::string::npos) << text;
+}
+
+// Eight animations with --slaves 2: never more than two slaves at once
+// (before, one per animation stayed up to the end), and every animation is
+// drawn live, on the pages and in the HTML page.
+TEST(Slaves, ManyAnimationsRunAtMostTheAllowedSlavesAtOnce) {
+  const fs::path dir = Scratch("many");
+  std::vector<std::string> scenes;
+  for (int k = 0; k < 8; ++k)
+    scenes.push_back(kBall + "# animation " + std::to_string(k + 1) + "\n");
+  std::ofstream(dir / "many.ens") << Document(scenes);
+  const fs::path pdf = dir / "many.pdf";
+  const Watched p = RunDochost(
+      {"convert", (dir / "many.ens").string(), "-o", pdf.string(), "--slaves", "2"}, dir / "log");
+  EXPECT_EQ(p.status, 0) << p.out;
+  EXPECT_GE(p.most_running, 1);
+  EXPECT_LE(p.most_running, 2) << p.out;
+  EXPECT_EQ(Count(PdfText(pdf), "frame at t = 0.00 s"), 8u) << PdfText(pdf);
+
+  const fs::path html = dir / "many.html";
+  const Watched h = RunDochost(
+      {"convert", (dir / "many.ens").string(), "-o", html.string(), "--slaves", "2"}, dir / "log");
+  EXPECT_EQ(h.status, 0) << h.out;
+  EXPECT_LE(h.most_running, 2) << h.out;
+  const std::string page = FileText(html);
+  // Each animation's frames (0, 1/4 and 1/2 s) are in the page.
+  EXPECT_EQ(Count(page, "data:image/png;base64,"), 8u * 3) << h.out;
+
+  EXPECT_EQ(asgard::testing::Exec(kDochost + " convert " + (dir / "many.ens").string() + " -o " +
+                                  html.string() + " --slaves 0")
+                .status,
+            2);
+}
+
+// A slave that needs more memory than --slave-memory ends alone: its
+// animation falls back (exit status 3, the reason on stderr) and the other
+// animation and the text are drawn.  Before, the slave took what it wanted.
+TEST(Slaves, ASlavePastItsMemoryLimitEndsAlone) {
+  if (asgard::tests::kAddressSanitizer)
+    GTEST_SKIP() << "the slave's memory limit is off under AddressSanitizer";
+  const fs::path dir = Scratch("memory");
+  // 400 MB of 10 MB strings: within the scene language's own 512 MB.
+  const std::string greedy =
+      "for \\{set i 0\\} \\{$i < 40\\} \\{incr i\\} \\{ lappend l [string repeat x 10000000] "
+      "\\}\n" +
+      kBall;
+  std::ofstream(dir / "greedy.ens") << Document({greedy, kBall});
+  const fs::path pdf = dir / "greedy.pdf";
+  const Watched w = RunDochost(
+      {"convert", (dir / "greedy.ens").string(), "-o", pdf.string(), "--slave-memory", "256"},
+      dir / "log");
+  EXPECT_EQ(w.status, 3) << w.out;
+  EXPECT_NE(w.out.find("greedy.ens: animation 1: "), std::string::npos) << w.out;
+  EXPECT_EQ(w.out.find("animation 2:"), std::string::npos) << w.out;
+  const std::string text = PdfText(pdf);
+  EXPECT_EQ(Count(text, "frame at t = 0.00 s"), 1u) << text;
+  EXPECT_NE(text.find("The text after the animations."), std::string::npos) << text;
+
+  // The same document with the default limit: both animations are drawn.
+  const Watched d =
+      RunDochost({"convert", (dir / "greedy.ens").string(), "-o", pdf.string()}, dir / "log");
+  EXPECT_EQ(d.status, 0) << d.out;
+  EXPECT_EQ(Count(PdfText(pdf), "frame at t = 0.00 s"), 2u);
+}
+
+}  // namespace
