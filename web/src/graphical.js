@@ -6,9 +6,11 @@
 // dragging, and re-simulates on release.  A trajectory is drawn as its curve
 // with a handle per control point (seed Figure 4.4).  Display styles (shaded,
 // lines) and element-type toggles choose what is drawn.  A click on a body
-// selects it; element creation asks for clicks on bodies (startPick).
+// selects it; element creation asks for clicks on bodies (startPick).  The
+// camera turns with a virtual sphere (camera.js) or follows one of the
+// scene's `view` elements; the scene's light sources light the picture.
 import * as THREE from 'three';
-import { OrbitControls } from 'three/examples/jsm/controls/OrbitControls.js';
+import { SphereControls } from './camera.js';
 import { GROUPS, Handle, ParameterIndex, numbers, round, rotationLiteral, rotationOf } from './handles.js';
 import { TrajectoryCurve, knotsText, parseKnots } from './trajectory.js';
 
@@ -24,12 +26,15 @@ export class GraphicalViewer {
     this.scene.background = new THREE.Color(0xffffff);
     this.camera = new THREE.PerspectiveCamera(35, 1, 0.1, 1000);
     this.camera.position.set(0, 0, 60);
-    this.controls = new OrbitControls(this.camera, canvas);  // rotate, zoom, pan
-    this.controls.addEventListener('change', () => this.draw());
-    this.scene.add(new THREE.HemisphereLight(0xffffff, 0x666666, 1.6));
+    // Without light sources in the scene: a sky light and a sun.
+    this.defaultLights = new THREE.Group();
     const sun = new THREE.DirectionalLight(0xffffff, 1.4);
     sun.position.set(30, 50, 40);
-    this.scene.add(sun);
+    this.defaultLights.add(new THREE.HemisphereLight(0xffffff, 0x666666, 1.6), sun);
+    this.sceneLights = new THREE.Group();
+    this.scene.add(this.defaultLights, this.sceneLights);
+    this.views = [];      // the scene's view elements' cameras (poses.views)
+    this.viewName = '';   // the one shown, or '' for the free camera
     this.bodies = new Map();   // name → {group, meshes, edges, index, static, centroid, radius}
     this.handles = [];         // Handle (handles.js)
     this.handleGroup = new THREE.Group();
@@ -54,6 +59,10 @@ export class GraphicalViewer {
     this.fitted = false;
     this.raycaster = new THREE.Raycaster();
     this.setupEvents();
+    // After setupEvents: a press on a handle disables the controls first.
+    this.controls = new SphereControls(this.camera, canvas, { pickPoint: (ev) => { const b = this.pickBody(ev); return b && b.world; } });
+    this.controls.onChange = () => this.draw();
+    this.controls.onStart = () => { if (this.viewName) this.setView(''); };
     new ResizeObserver(() => this.resize()).observe(canvas);
     this.resize();
   }
@@ -63,7 +72,66 @@ export class GraphicalViewer {
     this.renderer.setSize(w, h, false);
     this.camera.aspect = w / h;
     this.camera.updateProjectionMatrix();
+    if (this.viewName && this.poses) this.seek(this.t);  // the view's field of view follows the aspect
     this.draw();
+  }
+
+  // The scene's light sources (meshes.lights, as the core's renderer takes
+  // them) replace the default lights: a directional light shines along its
+  // direction, a point light from its position without falloff (as
+  // OpenGL's default attenuation), and a weak ambient term keeps the unlit
+  // sides readable, like the renderer's.
+  setLights(lights) {
+    this.sceneLights.clear();
+    this.defaultLights.visible = !lights.length;
+    if (!lights.length) return;
+    this.sceneLights.add(new THREE.AmbientLight(0xffffff, 0.5));
+    for (const l of lights) {
+      const color = new THREE.Color(l.color[0], l.color[1], l.color[2]);
+      if (l.directional) {
+        const light = new THREE.DirectionalLight(color, 2.5 * l.intensity);
+        light.position.set(-l.direction[0], -l.direction[1], -l.direction[2]);
+        light.target.position.set(0, 0, 0);
+        this.sceneLights.add(light, light.target);
+      } else {
+        const light = new THREE.PointLight(color, 2.5 * l.intensity, 0, 0);
+        light.position.set(...l.position);
+        this.sceneLights.add(light);
+      }
+    }
+  }
+
+  // Shows the scene's view element `name` (its camera follows the motion,
+  // as asgard render places it), or the free camera for ''.  The free
+  // camera starts where the view was.
+  setView(name) {
+    const view = this.views.find((v) => v.name === name);
+    this.viewName = view ? name : '';
+    if (!this.viewName) {
+      this.camera.fov = 35;
+      this.camera.updateProjectionMatrix();
+    }
+    if (this.ui.view) this.ui.view(this.viewName);
+    if (this.poses) this.seek(this.t);
+  }
+
+  // The chosen view's camera at frames i, j mixed by s.
+  placeViewCamera(i, j, s) {
+    const view = this.views.find((v) => v.name === this.viewName);
+    if (!view) return;
+    const mix = (k) => new THREE.Vector3(...view.cameras[i][k]).lerp(new THREE.Vector3(...view.cameras[j][k]), s);
+    const eye = mix(0), target = mix(1), up = mix(2).normalize();
+    const tanHalf = Math.tan(view.fov_y / 2) / Math.min(1, this.camera.aspect);
+    this.camera.fov = (2 * Math.atan(tanHalf) * 180) / Math.PI;
+    const d = eye.distanceTo(target);
+    this.camera.near = d / 100;
+    this.camera.far = d * 20;
+    this.camera.updateProjectionMatrix();
+    this.camera.position.copy(eye);
+    this.camera.up.copy(up);
+    this.controls.target.copy(target);
+    this.camera.lookAt(target);
+    this.camera.updateMatrixWorld();
   }
 
   // meshes: {bodies: [{name, static, centroid, radius, pieces}]};
@@ -110,6 +178,10 @@ export class GraphicalViewer {
       });
     });
     this.poses = poses;
+    this.setLights(meshes.lights || []);
+    this.views = poses.views || [];
+    if (this.viewName && !this.views.some((v) => v.name === this.viewName)) this.setView('');
+    if (this.ui.views) this.ui.views(this.views.map((v) => v.name), this.viewName);
     // The initial values this motion was simulated with (handles of moved
     // bodies are placed relative to them until the next simulation).
     this.simValues.clear();
@@ -472,6 +544,8 @@ export class GraphicalViewer {
     const half = (this.camera.fov * Math.PI) / 360;
     const halfX = Math.atan(Math.tan(half) * this.camera.aspect);
     const d = (r / Math.sin(Math.min(half, halfX))) * 1.05;
+    if (this.viewName) this.setView('');
+    this.camera.up.set(0, 1, 0);
     this.camera.position.copy(sphere.center).add(new THREE.Vector3(0.35, 0.25, 1).normalize().multiplyScalar(d));
     this.camera.near = d / 100;
     this.camera.far = d * 10;
@@ -501,6 +575,7 @@ export class GraphicalViewer {
       qb.set(c[k + 3], c[k + 4], c[k + 5], c[k + 6]);
       b.group.quaternion.slerpQuaternions(qa, qb, s);
     }
+    if (this.viewName) this.placeViewCamera(i, j, s);
     // While a body's handle is dragged the body sits at its new start.
     if (this.dragging && t === times[0] && this.bodies.has(this.dragging.element)) {
       const b = this.bodies.get(this.dragging.element), start = this.start(this.dragging.element);

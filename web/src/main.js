@@ -5,6 +5,7 @@
 // state, and its events keep all views of the animation — in every tab — in
 // step.
 import { Connection } from './connection.js';
+import { download, gltfText, imageBlob, movieRequest } from './export.js';
 import { GraphicalViewer } from './graphical.js';
 import { LanguageViewer } from './language.js';
 
@@ -21,6 +22,7 @@ const app = {
   setStatus(msg) { status.textContent = msg || ''; },
 };
 window.asgard = app;
+app.conn = conn;
 
 function applyState(state) {
   app.state = state;
@@ -184,6 +186,45 @@ function setupCreateMenu() {
   document.getElementById('create-link').onclick = () => createLink();
 }
 
+// Exports (control panel): downloads of the picture, the scene as glTF,
+// and a movie the server renders with asgard render.
+function setupExports() {
+  const g = () => app.graphical;
+  document.getElementById('export-image').onclick = async () => {
+    try { download(await imageBlob(g()), 'scene.png'); } catch (e) { app.setStatus(String(e.message || e)); }
+  };
+  document.getElementById('export-gltf').onclick = async () => {
+    if (!g().poses) return;
+    try { download(new Blob([await gltfText(g())], { type: 'model/gltf+json' }), 'scene.gltf'); } catch (e) { app.setStatus(String(e.message || e)); }
+  };
+  document.getElementById('export-movie').onclick = async () => {
+    if (!g().poses) return;
+    const button = document.getElementById('export-movie');
+    button.disabled = true;
+    app.setStatus('making the movie …');
+    try {
+      const r = await conn.call('movie', movieRequest(g(), g().canvas.clientWidth, g().canvas.clientHeight));
+      app.setStatus(`movie: ${Math.round(r.bytes / 1024)} KiB`);
+      download(r.url, r.name);
+    } catch (e) {
+      app.setStatus(String(e.message || e));
+    } finally {
+      button.disabled = false;
+    }
+  };
+}
+
+// The camera menu: the free camera or one of the scene's view elements.
+function showViews(names, current) {
+  const select = document.getElementById('camera-view');
+  const want = ['', ...names];
+  if ([...select.options].map((o) => o.value).join('\n') !== want.join('\n')) {
+    select.textContent = '';
+    for (const name of want) select.appendChild(new Option(name || 'Free camera', name));
+  }
+  select.value = current;
+}
+
 async function main() {
   app.graphical = new GraphicalViewer(document.getElementById('canvas'), {
     label: document.getElementById('label'),
@@ -195,6 +236,8 @@ async function main() {
     // Drag end: re-simulate and show the new motion everywhere.
     dragEnd: () => run('simulate', {}),
     selected: (name) => showSelection(name),
+    views: (names, current) => showViews(names, current),
+    view: (name) => { document.getElementById('camera-view').value = name; },
     prompt: (text) => {
       const p = document.getElementById('prompt');
       p.textContent = text;
@@ -202,6 +245,8 @@ async function main() {
     },
   });
   setupCreateMenu();
+  setupExports();
+  document.getElementById('camera-view').onchange = (ev) => app.graphical.setView(ev.target.value);
   const count = Math.max(1, Math.min(4, Number(params.get('viewers') || 1)));
   for (let i = 0; i < count; ++i) addLanguageViewer();
 
