@@ -6,9 +6,9 @@
 // centre of rotation set by double-clicking a body (that point then stays
 // put while the scene turns); the scene's views (one following the ball,
 // whose centre the core computes from the motion, one from the side) and
-// its red point light.  Screenshots go to OUT_DIR.
+// its red point light; torque handles.  Screenshots go to OUT_DIR.
 import { join } from 'node:path';
-import { browserTest, openEditor, sleep, waitFor } from './common.mjs';
+import { browserTest, dragHandle, openEditor, sleep, waitFor } from './common.mjs';
 
 const [asgard, scene, outDir] = process.argv.slice(2);
 
@@ -135,6 +135,31 @@ await browserTest(asgard, scene, 'camera', async ({ check, url, context }) => {
   check(await page.evaluate(() => document.getElementById('camera-view').value === '' && window.asgard.graphical.viewName === ''),
     'dragging in a view switches to the free camera');
 
+  // Torque handles (`torque`, `force -torque 1`) like the force handles:
+  // an arrow along the torque from the centre of mass, its tip dragged.
+  await page.evaluate(() => window.asgard.graphical.seek(0));
+  const torques = await page.evaluate(() => window.asgard.graphical.handleList().filter((h) => h.kind === 'torque'));
+  check(torques.map((h) => `${h.element}:${h.editable ? h.value.join(' ') : 'read-only'}`).join(', ') === 'torque#0:0 0 2, torque#1:1 0 0, torque#2:read-only',
+    `three torque handles: ${torques.map((h) => `${h.element} ${h.editable ? `{${h.value}}` : `(${h.reason})`}`).join(', ')}`);
+  const tip = await page.evaluate(() => {
+    const g = window.asgard.graphical, h = g.handles.find((x) => x.element === 'torque#0');
+    const c = g.bodies.get('brick').group.position.clone();
+    return { off: h.mesh.position.clone().sub(c).sub(c.clone().set(0, 0, 2 * h.scale)).length(), shown: h.arrow.visible };
+  });
+  check(tip.off < 1e-9 && tip.shown, 'the torque\'s arrow starts at the brick\'s centre and ends at centre + scale × {0 0 2}');
+  const spin = () => page.evaluate(() => { const g = window.asgard.graphical; return g.bodyQuaternion('brick', g.poses.times.length - 1); });
+  const spinBefore = await spin();
+  const t0 = torques.find((h) => h.element === 'torque#0');
+  await dragHandle(page, 'torque#0.vector', 60, -40);
+  const torqueLine = await page.evaluate(() => window.asgard.languageViewers[0].text().split('\n').find((l) => l.startsWith('torque -body brick -x') && !l.includes('mass')));
+  const words = /-x (\S+) -y (\S+) -z (\S+)/.exec(torqueLine || '');
+  const after = await page.evaluate(() => window.asgard.graphical.handleList().find((h) => h.element === 'torque#0'));
+  check(words && words.slice(1).map(Number).every((v, k) => Math.abs(v - after.value[k]) < 1e-9) && Math.hypot(after.x - t0.x - 60, after.y - t0.y + 40) < 2,
+    `dragging its tip rewrites the torque: "${torqueLine}", the tip under the pointer`);
+  const spinAfter = await spin();
+  check(spinAfter.some((v, k) => Math.abs(v - spinBefore[k]) > 1e-3), 'and the brick turns differently after the re-simulation');
+  await page.screenshot({ path: join(outDir, '4-torque.png') });
+
   // The red point light: the lit ball is red; without the light source
   // (Update) the default white lights show its own colour.
   await page.click('#fit');
@@ -156,7 +181,7 @@ await browserTest(asgard, scene, 'camera', async ({ check, url, context }) => {
   const lit = await colour();
   const lights = await page.evaluate(() => window.asgard.graphical.sceneLights.children.map((l) => l.type));
   check(lights.join(',') === 'AmbientLight,PointLight', `the scene's light source lights the picture (${lights.join(', ')})`);
-  await page.screenshot({ path: join(outDir, '4-red-light.png') });
+  await page.screenshot({ path: join(outDir, '5-red-light.png') });
   const text = await page.evaluate(() => window.asgard.text);
   await page.evaluate((t) => window.asgard.conn.call('update', { text: t }), text.replace(/^lightsource.*$/m, ''));
   check(await waitFor(() => page.evaluate(() => window.asgard.graphical.defaultLights.visible), 'the default lights'), 'without a light source the default lights are on');
@@ -164,6 +189,6 @@ await browserTest(asgard, scene, 'camera', async ({ check, url, context }) => {
   const plain = await colour();
   const redness = (c) => c[0] / Math.max(1, (c[1] + c[2]) / 2);
   check(redness(lit) > 1.6 * redness(plain), `the ball is redder under the red light: rgb(${lit.map(Math.round)}) vs rgb(${plain.map(Math.round)})`);
-  await page.screenshot({ path: join(outDir, '5-default-light.png') });
+  await page.screenshot({ path: join(outDir, '6-default-light.png') });
   check(errors.length === 0, `no page errors ${errors.join('; ')}`);
 });

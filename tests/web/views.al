@@ -12,3 +12,9 @@ body brick -shape brick -init_pos {0 -2 0}
 view chase -follow runner -scale 4
 view side -rot {0 1.5707963267948966 0}
 lightsource key -type point -pos {0 6 8} -color red -intensity 1
+
+# Torques: a literal one, one written as a force with -torque 1, and one
+# whose -z is an expression (read-only in the viewer).
+torque -body brick -x 0 -y 0 -z 2
+force -torque 1 -body runner -x 1 -y 0 -z 0
+torque -body brick -x 0 -y 0 -z {0 * brick.mass}

@@ -47,7 +47,7 @@ export class GraphicalViewer {
     this.mode = null;      // a creation waiting for clicks (startPick)
     this.index = new ParameterIndex([], []);
     this.simValues = new Map();  // "element.param" → the value the shown motion was simulated with
-    this.scales = { velocity: 1, angvel: 1, force: 1 };
+    this.scales = { velocity: 1, angvel: 1, force: 1, torque: 1 };
     this.handleSize = 0.3;
     this.radius = 10;
     this.style = 'shaded';
@@ -305,20 +305,22 @@ export class GraphicalViewer {
           anchor: centre, where: () => h.value ? arrowTip(h, centre(), axis) : centre(), valueFrom: (p, d) => delta(h, p, d) });
       }
     }
-    ix.ofKind('force').forEach((element) => {
+    // Forces and torques (`torque`, `force -torque 1`): an arrow from the
+    // point of application; a torque's arrow is its axis (right hand).
+    for (const kind of ['force', 'torque']) ix.ofKind(kind).forEach((element) => {
       const body = ix.text(element, 'body');
       if (!this.bodies.has(body)) return;
-      const forceIndex = Number(element.split('#')[1]);
+      const index = Number(element.split('#')[1]);
       const offset = ix.get(element, 'offset') ? ix.vector(element, 'offset') : null;
       // The point of application: the offset's handle, else the centre of mass.
       const base = () => this.onBody(body, this.bodyHandleOf(element, 'offset').value || this.bodies.get(body).centroid.toArray());
       const gravitational = ix.text(element, 'gravitational', '0') === '1';
-      const h = add({ kind: 'force', element, param: 'vector', words: ['x', 'y', 'z'], ...ix.vector(element, 'vector', { words: ['x', 'y', 'z'] }),
-        scale: this.scales.force, note: gravitational ? ' (× mass)' : '', anchor: base,
+      const h = add({ kind, element, param: 'vector', words: ['x', 'y', 'z'], ...ix.vector(element, 'vector', { words: ['x', 'y', 'z'] }),
+        scale: this.scales[kind], note: gravitational ? ' (× mass)' : '', anchor: base,
         where: () => {
-          if (h.editable) return arrowTip(h, base(), new THREE.Vector3(0, -1, 0));
-          // Read-only: the force's value at the shown time, when known.
-          const v = this.forceAt(forceIndex);
+          if (h.editable) return arrowTip(h, base(), kind === 'force' ? new THREE.Vector3(0, -1, 0) : new THREE.Vector3(0, 0, 1));
+          // Read-only: a force's value at the shown time, when known.
+          const v = kind === 'force' ? this.forceAt(index) : null;
           h.stubbed = !v;
           return v ? base().add(new THREE.Vector3(...v).multiplyScalar(h.scale)) : base();
         },
@@ -459,7 +461,7 @@ export class GraphicalViewer {
 
   // Arrow scales: the longest of each kind reaches a quarter of the scene.
   updateScales() {
-    const longest = { velocity: 0, angvel: 0, force: 0 };
+    const longest = { velocity: 0, angvel: 0, force: 0, torque: 0 };
     const ix = this.index;
     for (const name of this.bodies.keys()) {
       const v = numbers(ix.text(name, 'init_dpos')), w = numbers(ix.text(name, 'init_drot'));
@@ -468,10 +470,11 @@ export class GraphicalViewer {
     }
     for (const frame of (this.poses.forces || []).slice(0, 1))
       for (const f of frame) if (f) longest.force = Math.max(longest.force, Math.hypot(...f));
-    for (const element of ix.ofKind('force')) {
-      const v = ix.literal(element, ['x', 'y', 'z'], [1]);
-      if (v) longest.force = Math.max(longest.force, Math.hypot(...v));
-    }
+    for (const kind of ['force', 'torque'])
+      for (const element of ix.ofKind(kind)) {
+        const v = ix.literal(element, ['x', 'y', 'z'], [1]);
+        if (v) longest[kind] = Math.max(longest[kind], Math.hypot(...v));
+      }
     for (const k of Object.keys(longest)) this.scales[k] = (this.radius * 0.25) / (longest[k] > 0 ? longest[k] : 1);
   }
 
