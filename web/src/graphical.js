@@ -209,10 +209,16 @@ export class GraphicalViewer {
       const knots = [];
       for (let k = 0; k + 3 < values.length; k += 4) knots.push(values.slice(k, k + 4));
       if (p) p.value = knotsText(knots);
-      for (const h of this.handles)
-        if (h.kind === 'knot' && h.element === element && h !== this.dragging && knots[h.knot]) h.value = knots[h.knot].slice(1);
+      // (Not while this tab's trajectory panel drags them: its values are newer.)
+      if (this.panelDrag !== element)
+        for (const h of this.handles)
+          if (h.kind === 'knot' && h.element === element && h !== this.dragging && knots[h.knot]) {
+            h.t = knots[h.knot][0];
+            h.value = knots[h.knot].slice(1);
+          }
       this.placeHandles();
       this.draw();
+      if (this.ui.knots) this.ui.knots();
       return;
     }
     if (p) p.value = values.join(' ');
@@ -375,6 +381,7 @@ export class GraphicalViewer {
     ix.ofKind('trajectory').forEach((element) => this.addTrajectory(element, add));
     this.applyVisibility();
     this.placeHandles();
+    if (this.ui.knots) this.ui.knots();
   }
 
   // A trajectory (seed Figure 4.4): its curve, and a handle per control
@@ -503,6 +510,7 @@ export class GraphicalViewer {
     this.shown[kind] = on;
     this.applyVisibility();
     this.draw();
+    if (this.ui.knots) this.ui.knots();
   }
 
   applyVisibility() {
@@ -589,6 +597,7 @@ export class GraphicalViewer {
     this.placeSelection();
     this.ui.slider.value = String(this.frame);
     this.ui.clock.textContent = `t = ${t.toFixed(2)}`;
+    if (this.ui.time) this.ui.time(t);
     this.draw();
   }
 
@@ -772,6 +781,16 @@ export class GraphicalViewer {
 
   // The view's centre of rotation (where a new body is placed).
   viewCentre() { return this.controls.target.toArray().map((v) => round(v)); }
+
+  // The trajectory panel changed `element`'s knots (their handles hold the
+  // new times and values): redraw, and send the list like a drag.
+  knotsEdited(element) {
+    this.panelDrag = element;
+    this.placeHandles();
+    this.draw();
+    const line = this.paths.children.find((l) => l.userData.element === element);
+    if (line && line.userData.knots.length) this.sendDrag(line.userData.knots[0]);
+  }
 
   // One edit in flight at a time; the latest value wins.
   sendDrag(h) {

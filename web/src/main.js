@@ -8,6 +8,7 @@ import { Connection } from './connection.js';
 import { download, gltfText, imageBlob, movieRequest } from './export.js';
 import { GraphicalViewer } from './graphical.js';
 import { LanguageViewer } from './language.js';
+import { TrajectoryEditor } from './timeline.js';
 
 const params = new URLSearchParams(location.search);
 const animation = Number(params.get('a') || 0);
@@ -237,11 +238,26 @@ async function main() {
     dragEnd: () => run('simulate', {}),
     selected: (name) => showSelection(name),
     views: (names, current) => showViews(names, current),
+    knots: () => app.trajectories && !app.trajectories.drag && app.trajectories.render(),
+    time: () => app.trajectories && app.trajectories.placeCursor(),
     view: (name) => { document.getElementById('camera-view').value = name; },
     prompt: (text) => {
       const p = document.getElementById('prompt');
       p.textContent = text;
       p.style.display = text ? 'block' : 'none';
+    },
+  });
+  app.trajectories = new TrajectoryEditor(document.getElementById('trajectory-editor'), app.graphical, {
+    edit: (element) => app.graphical.knotsEdited(element),
+    // A drag's end (values null) or a new list (a point added or deleted):
+    // the list through the session, then a re-simulation.
+    end: async (element, values) => {
+      try {
+        if (values) await conn.call('set_parameter', { element, param: 'points', values });
+        else await app.graphical.flushDrag();
+      } catch (e) { app.setStatus(String(e.message || e)); }
+      app.graphical.panelDrag = null;
+      await run('simulate', {}).catch(() => {});
     },
   });
   setupCreateMenu();
