@@ -6,7 +6,9 @@
 // centre of rotation set by double-clicking a body (that point then stays
 // put while the scene turns); the scene's views (one following the ball,
 // whose centre the core computes from the motion, one from the side) and
-// its red point light; torque handles.  Screenshots go to OUT_DIR.
+// its red point light; torque handles; the Create menu's torque, light,
+// view (of the camera as it is) and trajectory, and Delete.  Screenshots go
+// to OUT_DIR.
 import { join } from 'node:path';
 import { browserTest, dragHandle, openEditor, sleep, waitFor } from './common.mjs';
 
@@ -190,5 +192,49 @@ await browserTest(asgard, scene, 'camera', async ({ check, url, context }) => {
   const redness = (c) => c[0] / Math.max(1, (c[1] + c[2]) / 2);
   check(redness(lit) > 1.6 * redness(plain), `the ball is redder under the red light: rgb(${lit.map(Math.round)}) vs rgb(${plain.map(Math.round)})`);
   await page.screenshot({ path: join(outDir, '6-default-light.png') });
+
+  // The Create menu: a torque on the selected body, a light, a view of the
+  // camera as it is, a trajectory; Delete removes a picked element.
+  const lines = async () => (await page.evaluate(() => window.asgard.languageViewers[0].text())).split('\n');
+  const created = async (re) => { let l; await waitFor(async () => (l = (await lines()).find((x) => re.test(x))), `${re}`); return l; };
+  const brickAt = await page.evaluate(() => window.asgard.graphical.bodyScreenPos('brick', [0.5, 0, 0.5]));
+  await page.mouse.click(brickAt.x, brickAt.y);
+  await waitFor(() => page.evaluate(() => window.asgard.graphical.selected === 'brick'), 'brick selected');
+  await page.click('#create-torque');
+  check(!!(await created(/^torque -body brick -x 0 -y 0 -z 1$/)), 'Torque makes "torque -body brick -x 0 -y 0 -z 1"');
+  check(await waitFor(() => page.evaluate(() => window.asgard.graphical.handleList().some((h) => h.element === 'torque#3' && h.kind === 'torque')), 'handle'),
+    'and the new torque has a handle');
+  await page.click('#create-light');
+  const light = await created(/^lightsource -type point -pos \{[^}]*\}$/);
+  check(!!light && await waitFor(() => page.evaluate(() => window.asgard.graphical.sceneLights.children.some((l) => l.type === 'PointLight')), 'light'),
+    `Light makes "${light}", which lights the picture`);
+  await page.click('#create-trajectory');
+  const traj = await created(/^trajectory trajectory1 -points /);
+  check(/^trajectory trajectory1 -points \{\{0 0 -2 0\} \{2 [\d.]+ -2 0\}\}$/.test(traj || ''), `Trajectory makes "${traj}" from the brick's start over the simulated time`);
+  // View: the free camera as a view element; choosing it shows the same picture.
+  await page.evaluate(() => window.asgard.graphical.seek(0));
+  await drag(page, [[cx, cy], [cx + 30, cy + 20], [cx + 60, cy + 30]]);
+  const seen = await page.evaluate(() => ['runner', 'brick'].map((b) => window.asgard.graphical.bodyScreenPos(b)));
+  await page.click('#create-view');
+  const viewLine = await created(/^view view1 /);
+  check(!!viewLine, `View makes "${viewLine}"`);
+  check(await waitFor(() => page.evaluate(() => [...document.querySelectorAll('#camera-view option')].some((o) => o.value === 'view1')), 'view1 offered'), 'and offers it in the camera menu');
+  await page.selectOption('#camera-view', 'view1');
+  const inView = await page.evaluate(() => ['runner', 'brick'].map((b) => window.asgard.graphical.bodyScreenPos(b)));
+  const off = Math.max(...inView.map((p, i) => Math.hypot(p.x - seen[i].x, p.y - seen[i].y)));
+  check(off < 0.03 * box.w, `seen through view1 the bodies are where the free camera showed them (within ${off.toFixed(1)} px)`);
+  await page.screenshot({ path: join(outDir, '7-created.png') });
+  // Delete: pick the new light's handle, then Delete.
+  await page.selectOption('#camera-view', '');
+  await page.check('#toggles input[data-kind=lights]');
+  const lh = await page.evaluate(() => window.asgard.graphical.handleList().find((h) => h.kind === 'light'));
+  await page.mouse.click(lh.x, lh.y);
+  check(await waitFor(() => page.evaluate(() => document.getElementById('selection').textContent === 'selected: lightsource#0'), 'selection'),
+    'clicking its handle selects the light');
+  const n = await page.evaluate(() => window.asgard.stateCount);
+  await page.click('#delete-element');
+  await waitFor(() => page.evaluate((k) => window.asgard.stateCount > k, n), 'the state after Delete');
+  check(!(await lines()).some((l) => l.startsWith('lightsource')) &&
+    await waitFor(() => page.evaluate(() => window.asgard.graphical.defaultLights.visible), 'default lights'), 'Delete removes its command, and the default lights are back');
   check(errors.length === 0, `no page errors ${errors.join('; ')}`);
 });

@@ -44,6 +44,7 @@ export class GraphicalViewer {
     this.selectionBox.visible = false;
     this.scene.add(this.handleGroup, this.linkLines, this.paths, this.selectionBox);
     this.selected = null;  // the selected body's name
+    this.selectedElement = null;  // the element last picked (a body, or a handle's element)
     this.mode = null;      // a creation waiting for clicks (startPick)
     this.index = new ParameterIndex([], []);
     this.simValues = new Map();  // "element.param" → the value the shown motion was simulated with
@@ -659,6 +660,7 @@ export class GraphicalViewer {
       const h = this.mode ? null : this.pick(ev);
       if (!h) return;
       if (this.bodies.has(h.element)) this.select(h.element);
+      else this.selectElement(h.element);
       if (!h.editable || !h.value) { this.showLabel(this.describe(h)); return; }
       ev.preventDefault();
       this.controls.enabled = false;
@@ -766,11 +768,19 @@ export class GraphicalViewer {
     this.showLabel('');
   }
 
+  // A handle's element (a force, torque, link, light or trajectory) picked:
+  // the one Delete removes; the selected body stays.
+  selectElement(element) {
+    this.selectedElement = element;
+    if (this.ui.selected) this.ui.selected(this.selected, element);
+  }
+
   select(name) {
     this.selected = name && this.bodies.has(name) ? name : null;
+    this.selectedElement = this.selected;
     this.placeSelection();
     this.draw();
-    if (this.ui.selected) this.ui.selected(this.selected);
+    if (this.ui.selected) this.ui.selected(this.selected, this.selectedElement);
   }
 
   placeSelection() {

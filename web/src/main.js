@@ -142,12 +142,14 @@ function showCreateMenu(state) {
     if (shapes.includes(current)) select.value = current;
   }
   document.getElementById('create-body').disabled = !shapes.length;
-  showSelection(app.graphical.selected);
+  showSelection(app.graphical.selected, app.graphical.selectedElement);
 }
 
-function showSelection(name) {
-  document.getElementById('selection').textContent = name ? `selected: ${name}` : 'no body selected';
-  for (const id of ['create-force', 'create-gravity']) document.getElementById(id).disabled = !name;
+function showSelection(name, element = name) {
+  document.getElementById('selection').textContent = element ? `selected: ${element}` : 'no body selected';
+  for (const id of ['create-force', 'create-gravity', 'create-torque']) document.getElementById(id).disabled = !name;
+  const known = element && app.state && app.state.elements.some((e) => e.element === element);
+  document.getElementById('delete-element').disabled = !known;
 }
 
 async function create(command) {
@@ -172,6 +174,8 @@ function createLink() {
   });
 }
 
+const g = () => app.graphical;
+
 function setupCreateMenu() {
   document.getElementById('create-body').onclick = () => {
     const shape = document.getElementById('create-shape').value;
@@ -185,12 +189,42 @@ function setupCreateMenu() {
     if (app.graphical.selected) create(`force -body ${app.graphical.selected} -gravitational 1 -x 0 -y -1 -z 0`);
   };
   document.getElementById('create-link').onclick = () => createLink();
+  document.getElementById('create-torque').onclick = () => {
+    if (g().selected) create(`torque -body ${g().selected} -x 0 -y 0 -z 1`);
+  };
+  const size = () => Math.max(1, g().radius);
+  document.getElementById('create-light').onclick = () => {
+    const c = g().viewCentre();
+    create(`lightsource -type point -pos ${literal([c[0], c[1] + size(), c[2] + size()])}`);
+  };
+  document.getElementById('create-view').onclick = () => {
+    // The free camera as asgard render's view options (export.js), the
+    // rotation as a rotation vector in radians as `view -rot` takes it.
+    const r = movieRequest(g(), g().canvas.clientWidth, g().canvas.clientHeight);
+    if (r.view) { app.setStatus(`the camera is the view ${r.view}`); return; }
+    const rot = r.rot.map((v) => (v * Math.PI) / 180);
+    create(`view ${freshName('view')} -rot ${literal(rot)} -pos ${literal(r.pan)} -scale ${Math.round(r.scale * 1000) / 1000} -center ${literal(r.center)}`);
+  };
+  document.getElementById('create-trajectory').onclick = () => {
+    const from = (g().selected && g().bodyPosition(g().selected)) || g().viewCentre();
+    const t0 = g().poses ? g().poses.t0 : 0, t1 = g().poses ? g().poses.t1 : 1;
+    const to = [from[0] + size() / 2, from[1], from[2]];
+    const knot = (t, p) => `{${[t, ...p].map((x) => Math.round(x * 1000) / 1000).join(' ')}}`;
+    create(`trajectory ${freshName('trajectory')} -points {${knot(t0, from)} ${knot(t1, to)}}`);
+  };
+  document.getElementById('delete-element').onclick = async () => {
+    const element = g().selectedElement;
+    if (!element) return;
+    try {
+      await run('delete', { element });
+      g().select(null);
+    } catch { /* the status says why */ }
+  };
 }
 
 // Exports (control panel): downloads of the picture, the scene as glTF,
 // and a movie the server renders with asgard render.
 function setupExports() {
-  const g = () => app.graphical;
   document.getElementById('export-image').onclick = async () => {
     try { download(await imageBlob(g()), 'scene.png'); } catch (e) { app.setStatus(String(e.message || e)); }
   };
@@ -236,7 +270,7 @@ async function main() {
     drag: (element, param, values) => conn.call('set_parameter', { element, param, values }),
     // Drag end: re-simulate and show the new motion everywhere.
     dragEnd: () => run('simulate', {}),
-    selected: (name) => showSelection(name),
+    selected: (name, element) => showSelection(name, element),
     views: (names, current) => showViews(names, current),
     knots: () => app.trajectories && !app.trajectories.drag && app.trajectories.render(),
     time: () => app.trajectories && app.trajectories.placeCursor(),
