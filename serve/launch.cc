@@ -90,6 +90,7 @@ Options MakeOptions(const LaunchOptions& lo) {
       !lo.core.empty()
           ? lo.core
           : (fs::path(Find({".", "../core/app"}, "asgard-core")) / "asgard-core").string();
+  o.render_program = (fs::path(Find({".", "../core/app"}, "asgard")) / "asgard").string();
   const char* env = std::getenv("ASGARD_WEB_ROOT");
   o.web_root = !lo.web_root.empty() ? lo.web_root
                : env && *env        ? std::string(env)

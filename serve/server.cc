@@ -14,17 +14,22 @@
 #include <boost/beast/http.hpp>
 #include <boost/beast/websocket.hpp>
 // clang-format on
+#include <array>
+#include <cmath>
 #include <condition_variable>
 #include <deque>
 #include <fstream>
 #include <iostream>
+#include <map>
 #include <memory>
 #include <mutex>
 #include <nlohmann/json.hpp>
+#include <optional>
 #include <set>
 #include <sstream>
 #include <thread>
 
+#include "serve/movie.h"
 #include "serve/slave_link.h"
 
 namespace asgard::serve {
@@ -77,8 +82,13 @@ class WsSession;
 // One animation: its slave, the last good scene, its views.
 class Hub {
  public:
-  Hub(net::io_context& io, Animation a, std::string core)
-      : io_(io), def_(std::move(a)), text_(def_.text), slave_(std::move(core)) {
+  Hub(net::io_context& io, Animation a, std::string core, std::string render, size_t index)
+      : io_(io),
+        def_(std::move(a)),
+        text_(def_.text),
+        slave_(std::move(core)),
+        render_(std::move(render)),
+        index_(index) {
     worker_ = std::thread([this] { Work(); });
   }
   ~Hub() {
@@ -96,7 +106,20 @@ class Hub {
   void Leave(const std::shared_ptr<WsSession>& s) { views_.erase(s); }
   void Request(const std::shared_ptr<WsSession>& from, json request);
 
+  // An export made for download (any thread): its name and bytes.
+  struct Download {
+    std::string name, type, bytes;
+  };
+  std::optional<Download> TakeDownload(long id) {
+    std::lock_guard lock(downloads_mu_);
+    const auto it = downloads_.find(id);
+    if (it == downloads_.end()) return std::nullopt;
+    return it->second;
+  }
+
  private:
+  json Movie(const json& params);
+
   void Post(std::function<void()> job) {
     {
       std::lock_guard lock(mu_);
@@ -139,6 +162,11 @@ class Hub {
   // (their parameters' spans and values are stale until the drag ends).
   bool state_stale_ = false;
   std::set<std::shared_ptr<WsSession>> views_;
+  std::string render_;  // the asgard CLI
+  size_t index_;        // this animation's number (?a=N)
+  std::mutex downloads_mu_;
+  std::map<long, Download> downloads_;  // the newest few exports
+  long next_download_ = 1;
   std::mutex mu_;
   std::condition_variable cv_;
   std::deque<std::function<void()>> jobs_;
@@ -360,6 +388,7 @@ json Hub::Handle(const std::string& method, const json& params,
     out["done"] = r.value("ok", false);
     return out;
   }
+  if (method == "movie") return Movie(params);
   if (method == "save") {
     std::string error;
     if (!def_.save) throw std::runtime_error("this animation cannot be saved");
@@ -369,6 +398,63 @@ json Hub::Handle(const std::string& method, const json& params,
   }
   (void)from;
   throw std::runtime_error("unknown method '" + method + "'");
+}
+
+// The movie export (control panel): the current text through `asgard
+// render`, kept for one download.  Runs on the worker, so this animation's
+// other requests wait for it (about a second for the pendulum).
+json Hub::Movie(const json& params) {
+  MovieRequest r;
+  r.format = params.value("format", "mp4");
+  const auto integer = [&](const char* key, int fallback) {
+    if (!params.contains(key)) return fallback;
+    const json& v = params[key];
+    if (!v.is_number_integer() || v.get<int>() < 16 || v.get<int>() > 4096)
+      throw std::runtime_error(std::string("movie: ") + key +
+                               " must be a whole number of pixels from 16 to 4096");
+    return v.get<int>();
+  };
+  r.width = integer("width", 640) / 2 * 2;  // H.264 wants even sizes
+  r.height = integer("height", 480) / 2 * 2;
+  const auto triple = [&](const char* key) -> std::optional<std::array<double, 3>> {
+    if (!params.contains(key)) return std::nullopt;
+    const json& v = params[key];
+    if (!v.is_array() || v.size() != 3)
+      throw std::runtime_error(std::string("movie: ") + key + " must be three numbers");
+    std::array<double, 3> a{};
+    for (size_t k = 0; k < 3; ++k) {
+      if (!v[k].is_number() || !std::isfinite(v[k].get<double>()))
+        throw std::runtime_error(std::string("movie: ") + key + " must be three numbers");
+      a[k] = v[k].get<double>();
+    }
+    return a;
+  };
+  r.rot_degrees = triple("rot");
+  r.center = triple("center");
+  r.pan = triple("pan");
+  if (params.contains("scale")) {
+    const json& v = params["scale"];
+    if (!v.is_number() || !(v.get<double>() > 0) || !std::isfinite(v.get<double>()))
+      throw std::runtime_error("movie: scale must be a positive number");
+    r.scale = v.get<double>();
+  }
+  r.view = params.value("view", "");
+  if (!r.view.empty() && (r.view[0] == '-' || r.view.find('\0') != std::string::npos))
+    throw std::runtime_error("movie: bad view name");
+  std::string bytes, error;
+  if (!RenderMovie(render_, text_, r, &bytes, &error)) throw std::runtime_error(error);
+  const size_t size = bytes.size();
+  long id = 0;
+  {
+    std::lock_guard lock(downloads_mu_);
+    id = next_download_++;
+    const std::string type = r.format == "gif" ? "image/gif" : "video/" + r.format;
+    downloads_[id] = {"scene." + r.format, type, std::move(bytes)};
+    while (downloads_.size() > 3) downloads_.erase(downloads_.begin());
+  }
+  return {{"url", "/download?a=" + std::to_string(index_) + "&id=" + std::to_string(id)},
+          {"name", "scene." + r.format},
+          {"bytes", size}};
 }
 
 std::string ReadFile(const std::string& path, bool* ok) {
@@ -389,7 +475,8 @@ class HttpSession : public std::enable_shared_from_this<HttpSession> {
  private:
   void Read();
   void OnRequest();
-  void Respond(http::status status, const std::string& type, std::string body);
+  void Respond(http::status status, const std::string& type, std::string body,
+               const std::string& attachment = "");
 
   beast::tcp_stream stream_;
   beast::flat_buffer buffer_;
@@ -401,7 +488,8 @@ class Server {
  public:
   Server(const Options& o, std::vector<Animation> animations) : options_(o), acceptor_(io_) {
     for (auto& a : animations)
-      hubs_.push_back(std::make_unique<Hub>(io_, std::move(a), o.core_program));
+      hubs_.push_back(
+          std::make_unique<Hub>(io_, std::move(a), o.core_program, o.render_program, hubs_.size()));
   }
   int Run() {
     beast::error_code ec;
@@ -527,6 +615,15 @@ void HttpSession::OnRequest() {
     std::string css = ReadFile(o.web_root + "/editor.css", &ok);
     return Respond(ok ? http::status::ok : http::status::not_found, "text/css", std::move(css));
   }
+  if (path == "/download") {
+    const long i = AnimationIndex(target);
+    Hub* hub = i < 0 ? nullptr : server_.hub(static_cast<size_t>(i));
+    const auto q = target.find("id=");
+    const long id = q == std::string::npos ? -1 : std::strtol(target.c_str() + q + 3, nullptr, 10);
+    const auto d = hub ? hub->TakeDownload(id) : std::nullopt;
+    if (!d) return Respond(http::status::not_found, "text/plain", "no such download\n");
+    return Respond(http::status::ok, d->type, d->bytes, d->name);
+  }
   if (path == "/edit" || (path == "/" && o.document_html.empty())) {
     const long i = AnimationIndex(target);
     if (i < 0 || !server_.hub(static_cast<size_t>(i)))
@@ -548,8 +645,11 @@ void HttpSession::OnRequest() {
   Respond(http::status::not_found, "text/plain", "not found\n");
 }
 
-void HttpSession::Respond(http::status status, const std::string& type, std::string body) {
+void HttpSession::Respond(http::status status, const std::string& type, std::string body,
+                          const std::string& attachment) {
   auto res = std::make_shared<http::response<http::string_body>>(status, 11);
+  if (!attachment.empty())
+    res->set(http::field::content_disposition, "attachment; filename=\"" + attachment + "\"");
   res->set(http::field::server, "asgard");
   res->set(http::field::content_type, type);
   res->set(http::field::cache_control, "no-store");

@@ -4,6 +4,7 @@
 //   browser ──HTTP GET──▶ /            the document page (or the editor of a
 //                          /edit?a=N    bare scene), the editor of animation N
 //                          /editor.js   the bundle built from web/
+//                          /download?a=N&id=K  an export the server made (a movie)
 //   browser ══WebSocket══▶ /ws?a=N     JSON {id, method, params} → {id, result | error};
 //                                       events {event: text | scene | state | error}
 //                                       go to every view of animation N
@@ -32,9 +33,10 @@ struct Animation {
 
 struct Options {
   std::string bind = "127.0.0.1";
-  int port = 0;              // 0: any free port
-  std::string web_root;      // index.html and editor.js (the bundle)
-  std::string core_program;  // asgard-core
+  int port = 0;                // 0: any free port
+  std::string web_root;        // index.html and editor.js (the bundle)
+  std::string core_program;    // asgard-core
+  std::string render_program;  // the asgard CLI (its `render` makes movies)
   std::string document_title;
   std::string document_html;     // the live document view's body; empty: "/" is the editor
   size_t max_message = 1 << 20;  // WebSocket message limit in bytes

@@ -6,6 +6,7 @@
 #include "core/physics/trajectory.h"
 #include "core/pipeline/pipeline.h"
 #include "core/render/sampler.h"
+#include "core/render/view.h"
 #include "core/session/session.h"
 
 namespace asgard::editor_rpc {
@@ -105,7 +106,48 @@ json Meshes(const render::SceneSampler& sampler) {
                       {"radius", Round(b.bound_radius)},
                       {"pieces", std::move(pieces)}});
   }
-  return {{"ok", true}, {"bodies", std::move(bodies)}};
+  // The scene's light sources as the renderer takes them (colours parsed).
+  json lights = json::array();
+  for (const auto& l : sampler.SceneLights())
+    lights.push_back({{"directional", l.directional},
+                      {"position", Vec(l.position)},
+                      {"direction", Vec(l.direction)},
+                      {"color", {l.color.r, l.color.g, l.color.b}},
+                      {"intensity", Round(l.intensity)}});
+  return {{"ok", true}, {"bodies", std::move(bodies)}, {"lights", std::move(lights)}};
+}
+
+// Each `view` element's camera at the frame times, as asgard render places
+// it (render::MakeCamera for a square picture): -follow moves the centre
+// with a body, -trajectory along a trajectory's curve.
+json Views(const render::SceneSampler& sampler, const session::Session& session,
+           const std::vector<double>& times) {
+  json views = json::array();
+  const auto& scene = session.scene();
+  for (size_t i = 0; i < scene.views.size(); ++i) {
+    const auto& e = scene.views[i];
+    render::ViewState v = sampler.ElementView(&e);
+    int follow = -1;
+    for (size_t b = 0; b < sampler.bodies().size(); ++b)
+      if (!e.follow.empty() && sampler.bodies()[b].name == e.follow) follow = static_cast<int>(b);
+    std::optional<physics::TrajectoryCurve> curve;
+    for (const auto& tr : scene.trajectories)
+      if (!e.trajectory.empty() && tr.name == e.trajectory) curve.emplace(tr.knots);
+    json cameras = json::array();
+    double fov_y = 0;
+    for (double t : times) {
+      if (follow >= 0) v.center = sampler.Poses(t)[follow].p;
+      if (curve) v.center = curve->Value(t);
+      const render::Camera c = render::MakeCamera(v, 1, 1);
+      fov_y = c.fov_y;
+      cameras.push_back({Vec(c.eye), Vec(c.target), Vec(c.up)});
+    }
+    views.push_back({{"name", e.name.empty() ? "view " + std::to_string(i + 1) : e.name},
+                     {"fov_y", fov_y},
+                     {"moves", follow >= 0 || curve.has_value()},
+                     {"cameras", std::move(cameras)}});
+  }
+  return views;
 }
 
 json Poses(const render::SceneSampler& sampler, const session::Session* session) {
@@ -137,6 +179,11 @@ json Poses(const render::SceneSampler& sampler, const session::Session* session)
       for (double t : times) values.push_back(Vec(curve.Value(t)));
       trajectories.push_back({{"name", tr.name}, {"values", std::move(values)}});
     }
+  // The default view of asgard render, and its camera's eye distance (in
+  // framing radii) and tan of half the field of view: what a viewer needs to
+  // ask for a movie seen as it shows the scene.
+  const render::ViewState framing = sampler.ElementView(nullptr);
+  const render::Camera camera = render::MakeCamera(framing, 1, 1);
   return {{"ok", true},
           {"t0", sampler.t0()},
           {"t1", sampler.t1()},
@@ -145,7 +192,13 @@ json Poses(const render::SceneSampler& sampler, const session::Session* session)
           {"bodies", std::move(names)},
           {"poses", std::move(frames)},
           {"forces", std::move(forces)},
-          {"trajectories", std::move(trajectories)}};
+          {"trajectories", std::move(trajectories)},
+          {"framing",
+           {{"center", Vec(framing.center)},
+            {"radius", Round(framing.radius)},
+            {"eye_distance", (camera.eye - camera.target).norm() / framing.radius},
+            {"tan_half_fov", std::tan(camera.fov_y / 2)}}},
+          {"views", session ? Views(sampler, *session, times) : json::array()}};
 }
 
 json Refused(const std::string& why) { return {{"ok", false}, {"error", why}}; }

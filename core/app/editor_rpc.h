@@ -9,11 +9,17 @@
 //                      reason}], can_undo, can_redo}
 //   meshes {}       → {bodies: [{name, static, centroid (shape coordinates),
 //                      radius, pieces: [{sphere, center, radius} |
-//                      {vertices: [x y z …], triangles: [i j k …]}, color]}]}
+//                      {vertices: [x y z …], triangles: [i j k …]}, color]}],
+//                      lights: [{directional, position, direction, color,
+//                      intensity}]}
 //   poses {}        → {t0, t1, frame_rate, times: [...], bodies: [names],
 //                      poses: [[x y z qx qy qz qw per body] per frame],
 //                      forces: [[[fx fy fz] | null per scene force] per frame],
-//                      trajectories: [{name, values: [[x y z] per frame]}]}
+//                      trajectories: [{name, values: [[x y z] per frame]}],
+//                      framing: {center, radius, eye_distance, tan_half_fov}
+//                      (asgard render's default view and camera),
+//                      views: [{name, fov_y, moves, cameras: [[eye target up]
+//                      per frame]}]}
 //
 // meshes and poses need a successful simulate; before it they answer
 // {ok: false, error}.

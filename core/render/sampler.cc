@@ -282,23 +282,27 @@ Bound SceneSampler::SceneBound() const {
 }
 
 std::optional<ViewState> SceneSampler::SceneView(const std::string& name) const {
+  const scene::View* chosen = nullptr;
+  for (const auto& e : scene_.views)
+    if (name.empty() || e.name == name) chosen = &e;
+  if (!name.empty() && !chosen) return std::nullopt;
+  return ElementView(chosen);
+}
+
+ViewState SceneSampler::ElementView(const scene::View* element) const {
   ViewState v;
   const Bound b = SceneBound();
   v.rotation = DefaultTilt();
   v.center = b.center;
   v.radius = b.radius;
-  const scene::View* chosen = nullptr;
-  for (const auto& e : scene_.views)
-    if (name.empty() || e.name == name) chosen = &e;
-  if (!name.empty() && !chosen) return std::nullopt;
-  if (chosen) {
-    if (chosen->option("rot")) {
-      const auto& q = chosen->rotation;
+  if (element) {
+    if (element->option("rot")) {
+      const auto& q = element->rotation;
       v.rotation = Eigen::Quaterniond(q[0], q[1], q[2], q[3]).normalized();
     }
-    if (chosen->option("pos")) v.position = ToVec(chosen->position);
-    if (chosen->option("scale")) v.scale = chosen->scale;
-    if (chosen->center) v.center = ToVec(*chosen->center);
+    if (element->option("pos")) v.position = ToVec(element->position);
+    if (element->option("scale")) v.scale = element->scale;
+    if (element->center) v.center = ToVec(*element->center);
   }
   return v;
 }

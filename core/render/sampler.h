@@ -91,6 +91,9 @@ class SceneSampler {
   // options of the scene's last `view` element (or the one named `name`)
   // overriding it.  Returns nullopt when `name` is given and not found.
   std::optional<ViewState> SceneView(const std::string& name = "") const;
+  // The view of one `view` element (null: the framing view alone); its
+  // -follow and -trajectory are the caller's (they move the centre per frame).
+  ViewState ElementView(const scene::View* element) const;
   // The scene's light sources (empty: the caller adds DefaultLight).
   std::vector<Light> SceneLights() const;
 

@@ -157,6 +157,12 @@ bool Session::Simulate(const std::function<void(double)>& progress) {
     run_->solver_error = ok ? "" : sim.error();
     stats_.steps = sim.totals().steps - steps_before;
   }
+  // Elements that only pictures use (light sources, views) may have changed
+  // without a new run: the run's scene, which samplers draw, takes them.
+  if (run_) {
+    run_->scene.lights = scene_.lights;
+    run_->scene.views = scene_.views;
+  }
   dirty_bodies_.clear();
   structure_dirty_ = false;
   stats_.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();

@@ -5,8 +5,11 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
+
 #include "core/pipeline/pipeline.h"
 #include "core/render/sampler.h"
+#include "core/render/view.h"
 #include "core/session/session.h"
 
 namespace asgard::editor_rpc {
@@ -97,6 +100,64 @@ TEST(EditorRpc, PosesSampleEachTrajectoryAtEachFrame) {
     EXPECT_NEAR(tr["values"][k][1].get<double>(), 2 * t, 2e-6);
     EXPECT_NEAR(tr["values"][k][2].get<double>(), 0.0, 1e-12);
   }
+}
+
+// The cameras of view elements as asgard render places them: a -follow
+// view's centre is the body at every frame; the eye sits kEyeDistance
+// framing radii / scale from it; the field of view fits the unit sphere
+// seen from there (render/view.cc).  Light sources come with the meshes.
+TEST(EditorRpc, ViewCamerasFollowTheirBodyAndLightsComeWithTheMeshes) {
+  const std::string text = kScene +
+                           "view chase -follow a -scale 2\n"
+                           "lightsource -type point -pos {1 2 3} -color red -intensity 0.5\n";
+  session::Session s(text);
+  ASSERT_TRUE(s.Simulate());
+  const pipeline::Run& run = *s.run();
+  render::SceneSampler sampler(run.scene, *run.equations, *run.simulation);
+  const json poses = *Dispatch("poses", json::object(), &s, &sampler);
+  ASSERT_EQ(poses["views"].size(), 1u);
+  const json& view = poses["views"][0];
+  EXPECT_EQ(view["name"], "chase");
+  EXPECT_TRUE(view["moves"].get<bool>());
+  EXPECT_NEAR(view["fov_y"].get<double>(), 2 * std::atan(1.06 * std::tan(std::asin(0.25))), 1e-12);
+  const double radius = poses["framing"]["radius"].get<double>();
+  EXPECT_NEAR(poses["framing"]["eye_distance"].get<double>(), render::kEyeDistance, 1e-9);
+  ASSERT_EQ(view["cameras"].size(), poses["times"].size());
+  for (size_t k = 0; k < poses["times"].size(); ++k) {
+    const json& cam = view["cameras"][k];
+    for (int c = 0; c < 3; ++c)
+      EXPECT_NEAR(cam[1][c].get<double>(), poses["poses"][k][c].get<double>(), 2e-6)
+          << "the centre is body a at frame " << k;
+    double d = 0;
+    for (int c = 0; c < 3; ++c) d += std::pow(cam[0][c].get<double>() - cam[1][c].get<double>(), 2);
+    EXPECT_NEAR(std::sqrt(d), render::kEyeDistance * radius / 2, 1e-5);
+  }
+  const json meshes = *Dispatch("meshes", json::object(), &s, &sampler);
+  ASSERT_EQ(meshes["lights"].size(), 1u);
+  const json& light = meshes["lights"][0];
+  EXPECT_FALSE(light["directional"].get<bool>());
+  EXPECT_EQ(light["position"], json({1, 2, 3}));
+  EXPECT_EQ(light["color"][0].get<double>(), 1.0);
+  EXPECT_EQ(light["color"][1].get<double>(), 0.0);
+  EXPECT_NEAR(light["intensity"].get<double>(), 0.5, 1e-12);
+}
+
+// A changed light source needs no new motion, but the run a sampler draws
+// takes it (an incremental simulation keeps the run).
+TEST(EditorRpc, AnIncrementalSimulationKeepsTheRunsLightsAndViewsCurrent) {
+  session::Session s(kScene + "lightsource -type point -pos {1 2 3} -color red\n");
+  ASSERT_TRUE(s.Simulate());
+  const pipeline::Run* before = s.run();
+  s.UpdateText(kScene + "lightsource -type point -pos {1 2 3} -color blue\nview v -scale 3\n");
+  ASSERT_TRUE(s.Simulate());
+  ASSERT_EQ(s.run(), before) << "the same run, carried on";
+  render::SceneSampler sampler(s.run()->scene, *s.run()->equations, *s.run()->simulation);
+  const auto lights = sampler.SceneLights();
+  ASSERT_EQ(lights.size(), 1u);
+  EXPECT_EQ(lights[0].color.b, 1.0);
+  EXPECT_EQ(lights[0].color.r, 0.0);
+  ASSERT_EQ(s.run()->scene.views.size(), 1u);
+  EXPECT_EQ(s.run()->scene.views[0].name, "v");
 }
 
 TEST(EditorRpc, MotionMethodsRefuseBeforeASimulation) {

@@ -5,7 +5,10 @@
 // `-points` literal in the language viewer while dragging, the drawn path
 // follows it, and after the re-simulation the ball riding the trajectory
 // passes through the moved point; Undo puts the point back in one step.  A
-// trajectory whose points are computed has read-only handles.  Screenshots go to OUT_DIR.
+// trajectory whose points are computed has read-only handles.  The panel
+// below the viewer: a point's value dragged in its component's graph, its
+// time dragged on the scale (not past a neighbour), a point added at the
+// shown time on the curve and deleted.  Screenshots go to OUT_DIR.
 import { join } from 'node:path';
 import { browserTest, dragHandle, handle, openEditor, waitFor } from './common.mjs';
 
@@ -101,5 +104,70 @@ await browserTest(asgard, scene, 'trajectory', async ({ check, url, context }) =
     const v = window.asgard.graphical.trajectoryValue('path', 1);
     return v && Math.hypot(...v) < 1e-9;
   }), 'undo path'), 'and the drawn path');
+
+  // The trajectory panel (Figure 4.4): the times of the control points on a
+  // scale, a graph per component; `path` is chosen (the computed one has no
+  // editable points and is not offered).
+  const panel = () => page.evaluate(() => ({
+    shown: getComputedStyle(document.getElementById('trajectory-editor')).display !== 'none',
+    options: [...document.querySelectorAll('#trajectory-editor select option')].map((o) => o.value),
+    times: [...document.querySelectorAll('#trajectory-editor .knot-time')].map((m) => { const r = m.getBoundingClientRect(); return { x: r.left + r.width / 2, y: r.top + r.height / 2 }; }),
+    points: [...document.querySelectorAll('#trajectory-editor .knot-value')].map((m) => { const r = m.getBoundingClientRect(); return { x: r.left + r.width / 2, y: r.top + r.height / 2, knot: Number(m.dataset.knot), c: Number(m.dataset.component) }; }),
+    scale: (() => { const e = window.asgard.trajectories; const L = e.L; return { perSecond: (L.width - 68) / (L.t1 - L.t0), ranges: e.ranges }; })(),
+  }));
+  let p = await panel();
+  check(p.shown && p.options.join(',') === 'path' && p.times.length === 5 && p.points.length === 15,
+    `the trajectory panel shows path's 5 point times and 3 × 5 graph points (offered: ${p.options.join(', ')})`);
+  const dragBy = async (at, dx, dy) => {
+    const n0 = await page.evaluate(() => window.asgard.stateCount);
+    await page.mouse.move(at.x, at.y);
+    await page.mouse.down();
+    for (let i = 1; i <= 5; ++i) await page.mouse.move(at.x + (dx * i) / 5, at.y + (dy * i) / 5);
+    await page.mouse.up();
+    await waitFor(() => page.evaluate((n) => window.asgard.stateCount > n, n0), 'the state after a panel drag');
+  };
+  // Point 4's y graph up by 22 pixels: its y grows by 22 px × the graph's scale.
+  const y4 = p.points.find((q) => q.knot === 3 && q.c === 1);
+  const [ylo, yhi] = p.scale.ranges[1];
+  await dragBy(y4, 0, -22);
+  let k = knotsOf(await text(page));
+  const wantY = 1 + (22 / 44) * (yhi - ylo);
+  check(k && Math.abs(k[3][2] - wantY) < 2e-3 && k[3][0] === 1.5 && k[3][1] === 1 && k[3][3] === 0,
+    `dragging point 4 up in the y graph makes it {${k && k[3].join(' ')}} (y ≈ ${wantY.toFixed(3)})`);
+  check(await waitFor(async () => (await agreement(page)).ridden < 1e-4, 'rider'), 'the rider follows the changed path');
+  const at15 = await page.evaluate(() => { const g = window.asgard.graphical; return g.bodyPosition('rider', g.poses.times.findIndex((t) => Math.abs(t - 1.5) < 1e-9)); });
+  check(Math.abs(at15[1] - k[3][2]) < 1e-4, `at t = 1.5 the rider's y is the point's (${at15[1].toFixed(4)})`);
+  // Point 2's time marker 30 pixels right: its time grows by 30 px / scale.
+  p = await panel();
+  await dragBy(p.times[1], 30, 0);
+  k = knotsOf(await text(page));
+  const wantT = 0.5 + 30 / p.scale.perSecond;
+  check(k && Math.abs(k[1][0] - wantT) < 2e-3 && k[1][1] === -1 && k[1][2] === 1,
+    `dragging point 2's time marker moves it to t = ${k && k[1][0]} (≈ ${wantT.toFixed(3)}), its position kept`);
+  // …but never past its neighbour.
+  p = await panel();
+  await dragBy(p.times[1], 400, 0);
+  k = knotsOf(await text(page));
+  check(k && k[1][0] < k[2][0] && k[2][0] - k[1][0] <= 1.001e-3 + 1e-9, `dragged far, it stops just before point 3 (t = ${k && k[1][0]} < ${k && k[2][0]})`);
+  await page.screenshot({ path: join(outDir, '4-panel-drags.png') });
+  // Add a point at the shown time on the curve; delete it again.
+  await page.evaluate(() => window.asgard.graphical.seek(1.8));
+  const onCurve = await page.evaluate(() => window.asgard.graphical.trajectoryValue('path', 1.8));
+  let count = await page.evaluate(() => window.asgard.stateCount);
+  await page.click('#trajectory-editor .add');
+  await waitFor(() => page.evaluate((n) => window.asgard.stateCount > n, count), 'the state after Add point');
+  k = knotsOf(await text(page));
+  const added = k && k.find((q) => Math.abs(q[0] - 1.8) < 1e-9);
+  check(k && k.length === 6 && added && added.slice(1).every((v, c) => Math.abs(v - onCurve[c]) < 1e-3),
+    `Add point puts {${added && added.join(' ')}} at t = 1.8 on the curve (6 points)`);
+  check(await waitFor(async () => (await panel()).times.length === 6, 'six markers'), 'the panel shows six time markers');
+  await page.screenshot({ path: join(outDir, '5-added-point.png') });
+  p = await panel();
+  await page.mouse.click(p.times[4].x, p.times[4].y);  // choose the new point (the 5th by time)
+  count = await page.evaluate(() => window.asgard.stateCount);
+  await page.click('#trajectory-editor .delete');
+  await waitFor(() => page.evaluate((n) => window.asgard.stateCount > n, count), 'the state after Delete point');
+  k = knotsOf(await text(page));
+  check(k && k.length === 5 && !k.some((q) => Math.abs(q[0] - 1.8) < 1e-9), `Delete point removes it (${k && k.map((q) => q[0]).join(', ')})`);
   check(errors.length === 0, `no script errors in the page ${errors.join('; ')}`);
 });

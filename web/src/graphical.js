@@ -6,9 +6,11 @@
 // dragging, and re-simulates on release.  A trajectory is drawn as its curve
 // with a handle per control point (seed Figure 4.4).  Display styles (shaded,
 // lines) and element-type toggles choose what is drawn.  A click on a body
-// selects it; element creation asks for clicks on bodies (startPick).
+// selects it; element creation asks for clicks on bodies (startPick).  The
+// camera turns with a virtual sphere (camera.js) or follows one of the
+// scene's `view` elements; the scene's light sources light the picture.
 import * as THREE from 'three';
-import { OrbitControls } from 'three/examples/jsm/controls/OrbitControls.js';
+import { SphereControls } from './camera.js';
 import { GROUPS, Handle, ParameterIndex, numbers, round, rotationLiteral, rotationOf } from './handles.js';
 import { TrajectoryCurve, knotsText, parseKnots } from './trajectory.js';
 
@@ -24,12 +26,15 @@ export class GraphicalViewer {
     this.scene.background = new THREE.Color(0xffffff);
     this.camera = new THREE.PerspectiveCamera(35, 1, 0.1, 1000);
     this.camera.position.set(0, 0, 60);
-    this.controls = new OrbitControls(this.camera, canvas);  // rotate, zoom, pan
-    this.controls.addEventListener('change', () => this.draw());
-    this.scene.add(new THREE.HemisphereLight(0xffffff, 0x666666, 1.6));
+    // Without light sources in the scene: a sky light and a sun.
+    this.defaultLights = new THREE.Group();
     const sun = new THREE.DirectionalLight(0xffffff, 1.4);
     sun.position.set(30, 50, 40);
-    this.scene.add(sun);
+    this.defaultLights.add(new THREE.HemisphereLight(0xffffff, 0x666666, 1.6), sun);
+    this.sceneLights = new THREE.Group();
+    this.scene.add(this.defaultLights, this.sceneLights);
+    this.views = [];      // the scene's view elements' cameras (poses.views)
+    this.viewName = '';   // the one shown, or '' for the free camera
     this.bodies = new Map();   // name → {group, meshes, edges, index, static, centroid, radius}
     this.handles = [];         // Handle (handles.js)
     this.handleGroup = new THREE.Group();
@@ -39,10 +44,11 @@ export class GraphicalViewer {
     this.selectionBox.visible = false;
     this.scene.add(this.handleGroup, this.linkLines, this.paths, this.selectionBox);
     this.selected = null;  // the selected body's name
+    this.selectedElement = null;  // the element last picked (a body, or a handle's element)
     this.mode = null;      // a creation waiting for clicks (startPick)
     this.index = new ParameterIndex([], []);
     this.simValues = new Map();  // "element.param" → the value the shown motion was simulated with
-    this.scales = { velocity: 1, angvel: 1, force: 1 };
+    this.scales = { velocity: 1, angvel: 1, force: 1, torque: 1 };
     this.handleSize = 0.3;
     this.radius = 10;
     this.style = 'shaded';
@@ -54,6 +60,10 @@ export class GraphicalViewer {
     this.fitted = false;
     this.raycaster = new THREE.Raycaster();
     this.setupEvents();
+    // After setupEvents: a press on a handle disables the controls first.
+    this.controls = new SphereControls(this.camera, canvas, { pickPoint: (ev) => { const b = this.pickBody(ev); return b && b.world; } });
+    this.controls.onChange = () => this.draw();
+    this.controls.onStart = () => { if (this.viewName) this.setView(''); };
     new ResizeObserver(() => this.resize()).observe(canvas);
     this.resize();
   }
@@ -63,7 +73,66 @@ export class GraphicalViewer {
     this.renderer.setSize(w, h, false);
     this.camera.aspect = w / h;
     this.camera.updateProjectionMatrix();
+    if (this.viewName && this.poses) this.seek(this.t);  // the view's field of view follows the aspect
     this.draw();
+  }
+
+  // The scene's light sources (meshes.lights, as the core's renderer takes
+  // them) replace the default lights: a directional light shines along its
+  // direction, a point light from its position without falloff (as
+  // OpenGL's default attenuation), and a weak ambient term keeps the unlit
+  // sides readable, like the renderer's.
+  setLights(lights) {
+    this.sceneLights.clear();
+    this.defaultLights.visible = !lights.length;
+    if (!lights.length) return;
+    this.sceneLights.add(new THREE.AmbientLight(0xffffff, 0.5));
+    for (const l of lights) {
+      const color = new THREE.Color(l.color[0], l.color[1], l.color[2]);
+      if (l.directional) {
+        const light = new THREE.DirectionalLight(color, 2.5 * l.intensity);
+        light.position.set(-l.direction[0], -l.direction[1], -l.direction[2]);
+        light.target.position.set(0, 0, 0);
+        this.sceneLights.add(light, light.target);
+      } else {
+        const light = new THREE.PointLight(color, 2.5 * l.intensity, 0, 0);
+        light.position.set(...l.position);
+        this.sceneLights.add(light);
+      }
+    }
+  }
+
+  // Shows the scene's view element `name` (its camera follows the motion,
+  // as asgard render places it), or the free camera for ''.  The free
+  // camera starts where the view was.
+  setView(name) {
+    const view = this.views.find((v) => v.name === name);
+    this.viewName = view ? name : '';
+    if (!this.viewName) {
+      this.camera.fov = 35;
+      this.camera.updateProjectionMatrix();
+    }
+    if (this.ui.view) this.ui.view(this.viewName);
+    if (this.poses) this.seek(this.t);
+  }
+
+  // The chosen view's camera at frames i, j mixed by s.
+  placeViewCamera(i, j, s) {
+    const view = this.views.find((v) => v.name === this.viewName);
+    if (!view) return;
+    const mix = (k) => new THREE.Vector3(...view.cameras[i][k]).lerp(new THREE.Vector3(...view.cameras[j][k]), s);
+    const eye = mix(0), target = mix(1), up = mix(2).normalize();
+    const tanHalf = Math.tan(view.fov_y / 2) / Math.min(1, this.camera.aspect);
+    this.camera.fov = (2 * Math.atan(tanHalf) * 180) / Math.PI;
+    const d = eye.distanceTo(target);
+    this.camera.near = d / 100;
+    this.camera.far = d * 20;
+    this.camera.updateProjectionMatrix();
+    this.camera.position.copy(eye);
+    this.camera.up.copy(up);
+    this.controls.target.copy(target);
+    this.camera.lookAt(target);
+    this.camera.updateMatrixWorld();
   }
 
   // meshes: {bodies: [{name, static, centroid, radius, pieces}]};
@@ -110,6 +179,10 @@ export class GraphicalViewer {
       });
     });
     this.poses = poses;
+    this.setLights(meshes.lights || []);
+    this.views = poses.views || [];
+    if (this.viewName && !this.views.some((v) => v.name === this.viewName)) this.setView('');
+    if (this.ui.views) this.ui.views(this.views.map((v) => v.name), this.viewName);
     // The initial values this motion was simulated with (handles of moved
     // bodies are placed relative to them until the next simulation).
     this.simValues.clear();
@@ -137,10 +210,16 @@ export class GraphicalViewer {
       const knots = [];
       for (let k = 0; k + 3 < values.length; k += 4) knots.push(values.slice(k, k + 4));
       if (p) p.value = knotsText(knots);
-      for (const h of this.handles)
-        if (h.kind === 'knot' && h.element === element && h !== this.dragging && knots[h.knot]) h.value = knots[h.knot].slice(1);
+      // (Not while this tab's trajectory panel drags them: its values are newer.)
+      if (this.panelDrag !== element)
+        for (const h of this.handles)
+          if (h.kind === 'knot' && h.element === element && h !== this.dragging && knots[h.knot]) {
+            h.t = knots[h.knot][0];
+            h.value = knots[h.knot].slice(1);
+          }
       this.placeHandles();
       this.draw();
+      if (this.ui.knots) this.ui.knots();
       return;
     }
     if (p) p.value = values.join(' ');
@@ -233,20 +312,22 @@ export class GraphicalViewer {
           anchor: centre, where: () => h.value ? arrowTip(h, centre(), axis) : centre(), valueFrom: (p, d) => delta(h, p, d) });
       }
     }
-    ix.ofKind('force').forEach((element) => {
+    // Forces and torques (`torque`, `force -torque 1`): an arrow from the
+    // point of application; a torque's arrow is its axis (right hand).
+    for (const kind of ['force', 'torque']) ix.ofKind(kind).forEach((element) => {
       const body = ix.text(element, 'body');
       if (!this.bodies.has(body)) return;
-      const forceIndex = Number(element.split('#')[1]);
+      const index = Number(element.split('#')[1]);
       const offset = ix.get(element, 'offset') ? ix.vector(element, 'offset') : null;
       // The point of application: the offset's handle, else the centre of mass.
       const base = () => this.onBody(body, this.bodyHandleOf(element, 'offset').value || this.bodies.get(body).centroid.toArray());
       const gravitational = ix.text(element, 'gravitational', '0') === '1';
-      const h = add({ kind: 'force', element, param: 'vector', words: ['x', 'y', 'z'], ...ix.vector(element, 'vector', { words: ['x', 'y', 'z'] }),
-        scale: this.scales.force, note: gravitational ? ' (× mass)' : '', anchor: base,
+      const h = add({ kind, element, param: 'vector', words: ['x', 'y', 'z'], ...ix.vector(element, 'vector', { words: ['x', 'y', 'z'] }),
+        scale: this.scales[kind], note: gravitational ? ' (× mass)' : '', anchor: base,
         where: () => {
-          if (h.editable) return arrowTip(h, base(), new THREE.Vector3(0, -1, 0));
-          // Read-only: the force's value at the shown time, when known.
-          const v = this.forceAt(forceIndex);
+          if (h.editable) return arrowTip(h, base(), kind === 'force' ? new THREE.Vector3(0, -1, 0) : new THREE.Vector3(0, 0, 1));
+          // Read-only: a force's value at the shown time, when known.
+          const v = kind === 'force' ? this.forceAt(index) : null;
           h.stubbed = !v;
           return v ? base().add(new THREE.Vector3(...v).multiplyScalar(h.scale)) : base();
         },
@@ -301,6 +382,7 @@ export class GraphicalViewer {
     ix.ofKind('trajectory').forEach((element) => this.addTrajectory(element, add));
     this.applyVisibility();
     this.placeHandles();
+    if (this.ui.knots) this.ui.knots();
   }
 
   // A trajectory (seed Figure 4.4): its curve, and a handle per control
@@ -387,7 +469,7 @@ export class GraphicalViewer {
 
   // Arrow scales: the longest of each kind reaches a quarter of the scene.
   updateScales() {
-    const longest = { velocity: 0, angvel: 0, force: 0 };
+    const longest = { velocity: 0, angvel: 0, force: 0, torque: 0 };
     const ix = this.index;
     for (const name of this.bodies.keys()) {
       const v = numbers(ix.text(name, 'init_dpos')), w = numbers(ix.text(name, 'init_drot'));
@@ -396,10 +478,11 @@ export class GraphicalViewer {
     }
     for (const frame of (this.poses.forces || []).slice(0, 1))
       for (const f of frame) if (f) longest.force = Math.max(longest.force, Math.hypot(...f));
-    for (const element of ix.ofKind('force')) {
-      const v = ix.literal(element, ['x', 'y', 'z'], [1]);
-      if (v) longest.force = Math.max(longest.force, Math.hypot(...v));
-    }
+    for (const kind of ['force', 'torque'])
+      for (const element of ix.ofKind(kind)) {
+        const v = ix.literal(element, ['x', 'y', 'z'], [1]);
+        if (v) longest[kind] = Math.max(longest[kind], Math.hypot(...v));
+      }
     for (const k of Object.keys(longest)) this.scales[k] = (this.radius * 0.25) / (longest[k] > 0 ? longest[k] : 1);
   }
 
@@ -428,6 +511,7 @@ export class GraphicalViewer {
     this.shown[kind] = on;
     this.applyVisibility();
     this.draw();
+    if (this.ui.knots) this.ui.knots();
   }
 
   applyVisibility() {
@@ -472,6 +556,8 @@ export class GraphicalViewer {
     const half = (this.camera.fov * Math.PI) / 360;
     const halfX = Math.atan(Math.tan(half) * this.camera.aspect);
     const d = (r / Math.sin(Math.min(half, halfX))) * 1.05;
+    if (this.viewName) this.setView('');
+    this.camera.up.set(0, 1, 0);
     this.camera.position.copy(sphere.center).add(new THREE.Vector3(0.35, 0.25, 1).normalize().multiplyScalar(d));
     this.camera.near = d / 100;
     this.camera.far = d * 10;
@@ -501,6 +587,7 @@ export class GraphicalViewer {
       qb.set(c[k + 3], c[k + 4], c[k + 5], c[k + 6]);
       b.group.quaternion.slerpQuaternions(qa, qb, s);
     }
+    if (this.viewName) this.placeViewCamera(i, j, s);
     // While a body's handle is dragged the body sits at its new start.
     if (this.dragging && t === times[0] && this.bodies.has(this.dragging.element)) {
       const b = this.bodies.get(this.dragging.element), start = this.start(this.dragging.element);
@@ -511,6 +598,7 @@ export class GraphicalViewer {
     this.placeSelection();
     this.ui.slider.value = String(this.frame);
     this.ui.clock.textContent = `t = ${t.toFixed(2)}`;
+    if (this.ui.time) this.ui.time(t);
     this.draw();
   }
 
@@ -572,6 +660,7 @@ export class GraphicalViewer {
       const h = this.mode ? null : this.pick(ev);
       if (!h) return;
       if (this.bodies.has(h.element)) this.select(h.element);
+      else this.selectElement(h.element);
       if (!h.editable || !h.value) { this.showLabel(this.describe(h)); return; }
       ev.preventDefault();
       this.controls.enabled = false;
@@ -679,11 +768,19 @@ export class GraphicalViewer {
     this.showLabel('');
   }
 
+  // A handle's element (a force, torque, link, light or trajectory) picked:
+  // the one Delete removes; the selected body stays.
+  selectElement(element) {
+    this.selectedElement = element;
+    if (this.ui.selected) this.ui.selected(this.selected, element);
+  }
+
   select(name) {
     this.selected = name && this.bodies.has(name) ? name : null;
+    this.selectedElement = this.selected;
     this.placeSelection();
     this.draw();
-    if (this.ui.selected) this.ui.selected(this.selected);
+    if (this.ui.selected) this.ui.selected(this.selected, this.selectedElement);
   }
 
   placeSelection() {
@@ -694,6 +791,16 @@ export class GraphicalViewer {
 
   // The view's centre of rotation (where a new body is placed).
   viewCentre() { return this.controls.target.toArray().map((v) => round(v)); }
+
+  // The trajectory panel changed `element`'s knots (their handles hold the
+  // new times and values): redraw, and send the list like a drag.
+  knotsEdited(element) {
+    this.panelDrag = element;
+    this.placeHandles();
+    this.draw();
+    const line = this.paths.children.find((l) => l.userData.element === element);
+    if (line && line.userData.knots.length) this.sendDrag(line.userData.knots[0]);
+  }
 
   // One edit in flight at a time; the latest value wins.
   sendDrag(h) {

@@ -7,6 +7,7 @@
 //   velocity   body     init_dpos arrow from the centre of mass    tip moves in the screen plane
 //   angvel     body     init_drot arrow through the centre of mass tip moves in the screen plane
 //   force      force#i  vector    arrow from the point of application (constant forces)
+//   torque     torque#i vector    arrow along the axis from the point of application (also force -torque 1)
 //   offset     force#i  offset    ball on the body                 held on the body's surface
 //   link ends  link#i   offset1/2 ball on each body, line between  held on the surface (Shift: free)
 //              link#i   vector    ball at an object-to-point link's fixed point
@@ -52,15 +53,15 @@ export function rotationLiteral(q, count) {
 
 const COLORS = {
   position: 0xffa000, rotation: 0xc040c0, velocity: 0x2070ff, angvel: 0x10a0a0,
-  force: 0xe03030, offset: 0xe03030, link: 0x209020, light: 0xd0a000, knot: 0x3060d0,
+  force: 0xe03030, torque: 0xa05010, offset: 0xe03030, link: 0x209020, light: 0xd0a000, knot: 0x3060d0,
 };
 // Which toggle shows a kind (the viewer's element-type check boxes).
 export const GROUPS = {
   position: 'handles', rotation: 'handles', velocity: 'velocities', angvel: 'velocities',
-  force: 'forces', offset: 'forces', link: 'links', light: 'lights', knot: 'trajectories',
+  force: 'forces', torque: 'forces', offset: 'forces', link: 'links', light: 'lights', knot: 'trajectories',
 };
 // Coincident handles: the lower wins the pick.
-const PRIORITY = { position: 0, rotation: 1, offset: 2, link: 2, light: 2, force: 3, velocity: 4, angvel: 5, knot: 6 };
+const PRIORITY = { position: 0, rotation: 1, offset: 2, link: 2, light: 2, force: 3, torque: 3, velocity: 4, angvel: 5, knot: 6 };
 
 // The session's view of one element's parameters.
 export class ParameterIndex {

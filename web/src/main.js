@@ -5,8 +5,10 @@
 // state, and its events keep all views of the animation — in every tab — in
 // step.
 import { Connection } from './connection.js';
+import { download, gltfText, imageBlob, movieRequest } from './export.js';
 import { GraphicalViewer } from './graphical.js';
 import { LanguageViewer } from './language.js';
+import { TrajectoryEditor } from './timeline.js';
 
 const params = new URLSearchParams(location.search);
 const animation = Number(params.get('a') || 0);
@@ -21,6 +23,7 @@ const app = {
   setStatus(msg) { status.textContent = msg || ''; },
 };
 window.asgard = app;
+app.conn = conn;
 
 function applyState(state) {
   app.state = state;
@@ -139,12 +142,14 @@ function showCreateMenu(state) {
     if (shapes.includes(current)) select.value = current;
   }
   document.getElementById('create-body').disabled = !shapes.length;
-  showSelection(app.graphical.selected);
+  showSelection(app.graphical.selected, app.graphical.selectedElement);
 }
 
-function showSelection(name) {
-  document.getElementById('selection').textContent = name ? `selected: ${name}` : 'no body selected';
-  for (const id of ['create-force', 'create-gravity']) document.getElementById(id).disabled = !name;
+function showSelection(name, element = name) {
+  document.getElementById('selection').textContent = element ? `selected: ${element}` : 'no body selected';
+  for (const id of ['create-force', 'create-gravity', 'create-torque']) document.getElementById(id).disabled = !name;
+  const known = element && app.state && app.state.elements.some((e) => e.element === element);
+  document.getElementById('delete-element').disabled = !known;
 }
 
 async function create(command) {
@@ -169,6 +174,8 @@ function createLink() {
   });
 }
 
+const g = () => app.graphical;
+
 function setupCreateMenu() {
   document.getElementById('create-body').onclick = () => {
     const shape = document.getElementById('create-shape').value;
@@ -182,6 +189,75 @@ function setupCreateMenu() {
     if (app.graphical.selected) create(`force -body ${app.graphical.selected} -gravitational 1 -x 0 -y -1 -z 0`);
   };
   document.getElementById('create-link').onclick = () => createLink();
+  document.getElementById('create-torque').onclick = () => {
+    if (g().selected) create(`torque -body ${g().selected} -x 0 -y 0 -z 1`);
+  };
+  const size = () => Math.max(1, g().radius);
+  document.getElementById('create-light').onclick = () => {
+    const c = g().viewCentre();
+    create(`lightsource -type point -pos ${literal([c[0], c[1] + size(), c[2] + size()])}`);
+  };
+  document.getElementById('create-view').onclick = () => {
+    // The free camera as asgard render's view options (export.js), the
+    // rotation as a rotation vector in radians as `view -rot` takes it.
+    const r = movieRequest(g(), g().canvas.clientWidth, g().canvas.clientHeight);
+    if (r.view) { app.setStatus(`the camera is the view ${r.view}`); return; }
+    const rot = r.rot.map((v) => (v * Math.PI) / 180);
+    create(`view ${freshName('view')} -rot ${literal(rot)} -pos ${literal(r.pan)} -scale ${Math.round(r.scale * 1000) / 1000} -center ${literal(r.center)}`);
+  };
+  document.getElementById('create-trajectory').onclick = () => {
+    const from = (g().selected && g().bodyPosition(g().selected)) || g().viewCentre();
+    const t0 = g().poses ? g().poses.t0 : 0, t1 = g().poses ? g().poses.t1 : 1;
+    const to = [from[0] + size() / 2, from[1], from[2]];
+    const knot = (t, p) => `{${[t, ...p].map((x) => Math.round(x * 1000) / 1000).join(' ')}}`;
+    create(`trajectory ${freshName('trajectory')} -points {${knot(t0, from)} ${knot(t1, to)}}`);
+  };
+  document.getElementById('delete-element').onclick = async () => {
+    const element = g().selectedElement;
+    if (!element) return;
+    try {
+      await run('delete', { element });
+      g().select(null);
+    } catch { /* the status says why */ }
+  };
+}
+
+// Exports (control panel): downloads of the picture, the scene as glTF,
+// and a movie the server renders with asgard render.
+function setupExports() {
+  document.getElementById('export-image').onclick = async () => {
+    try { download(await imageBlob(g()), 'scene.png'); } catch (e) { app.setStatus(String(e.message || e)); }
+  };
+  document.getElementById('export-gltf').onclick = async () => {
+    if (!g().poses) return;
+    try { download(new Blob([await gltfText(g())], { type: 'model/gltf+json' }), 'scene.gltf'); } catch (e) { app.setStatus(String(e.message || e)); }
+  };
+  document.getElementById('export-movie').onclick = async () => {
+    if (!g().poses) return;
+    const button = document.getElementById('export-movie');
+    button.disabled = true;
+    app.setStatus('making the movie …');
+    try {
+      const r = await conn.call('movie', movieRequest(g(), g().canvas.clientWidth, g().canvas.clientHeight));
+      app.setStatus(`movie: ${Math.round(r.bytes / 1024)} KiB`);
+      download(r.url, r.name);
+    } catch (e) {
+      app.setStatus(String(e.message || e));
+    } finally {
+      button.disabled = false;
+    }
+  };
+}
+
+// The camera menu: the free camera or one of the scene's view elements.
+function showViews(names, current) {
+  const select = document.getElementById('camera-view');
+  const want = ['', ...names];
+  if ([...select.options].map((o) => o.value).join('\n') !== want.join('\n')) {
+    select.textContent = '';
+    for (const name of want) select.appendChild(new Option(name || 'Free camera', name));
+  }
+  select.value = current;
 }
 
 async function main() {
@@ -194,14 +270,33 @@ async function main() {
     drag: (element, param, values) => conn.call('set_parameter', { element, param, values }),
     // Drag end: re-simulate and show the new motion everywhere.
     dragEnd: () => run('simulate', {}),
-    selected: (name) => showSelection(name),
+    selected: (name, element) => showSelection(name, element),
+    views: (names, current) => showViews(names, current),
+    knots: () => app.trajectories && !app.trajectories.drag && app.trajectories.render(),
+    time: () => app.trajectories && app.trajectories.placeCursor(),
+    view: (name) => { document.getElementById('camera-view').value = name; },
     prompt: (text) => {
       const p = document.getElementById('prompt');
       p.textContent = text;
       p.style.display = text ? 'block' : 'none';
     },
   });
+  app.trajectories = new TrajectoryEditor(document.getElementById('trajectory-editor'), app.graphical, {
+    edit: (element) => app.graphical.knotsEdited(element),
+    // A drag's end (values null) or a new list (a point added or deleted):
+    // the list through the session, then a re-simulation.
+    end: async (element, values) => {
+      try {
+        if (values) await conn.call('set_parameter', { element, param: 'points', values });
+        else await app.graphical.flushDrag();
+      } catch (e) { app.setStatus(String(e.message || e)); }
+      app.graphical.panelDrag = null;
+      await run('simulate', {}).catch(() => {});
+    },
+  });
   setupCreateMenu();
+  setupExports();
+  document.getElementById('camera-view').onchange = (ev) => app.graphical.setView(ev.target.value);
   const count = Math.max(1, Math.min(4, Number(params.get('viewers') || 1)));
   for (let i = 0; i < count; ++i) addLanguageViewer();
 
