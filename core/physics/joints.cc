@@ -176,9 +176,11 @@ void JointSolver::ProjectVelocities(double t, const double* values, double* stat
     };
     const JointData& d = joints_[j];
     Eigen::Vector3d vb = Eigen::Vector3d::Zero();
-    if (d.b.body >= 0) vb = velocity(d.b);
-    else vb = Eigen::Vector3d(point_values_[d.point + 3], point_values_[d.point + 4],
-                              point_values_[d.point + 5]);
+    if (d.b.body >= 0)
+      vb = velocity(d.b);
+    else
+      vb = Eigen::Vector3d(point_values_[d.point + 3], point_values_[d.point + 4],
+                           point_values_[d.point + 5]);
     rhs_[j] = -(velocity(d.a) - vb);
   }
   Solve();
@@ -236,8 +238,10 @@ void JointSolver::Solve() {
     blocks_[s] = coupling_[s];
     if (i == k) {
       const double scale = blocks_[s].trace() / 3.0;
-      if (scale > 0) blocks_[s].diagonal().array() += kRegularization * scale;
-      else blocks_[s].setIdentity();  // both ends immovable: the force acts on nothing
+      if (scale > 0)
+        blocks_[s].diagonal().array() += kRegularization * scale;
+      else
+        blocks_[s].setIdentity();  // both ends immovable: the force acts on nothing
     }
   }
   for (const Pivot& p : pivots_) {

@@ -77,24 +77,24 @@ class JointSolver {
 
  private:
   struct BodyData {
-    int body;            // index in sys.bodies
-    int local;           // first local state index
+    int body;   // index in sys.bodies
+    int local;  // first local state index
     double inv_mass;
     Eigen::Matrix3d inv_inertia;  // body axes
     // per evaluation
     Eigen::Matrix3d R;
     Eigen::Matrix3d inv_inertia_world;  // R I⁻¹ Rᵀ
-    Eigen::Vector3d w;            // angular velocity, body axes
+    Eigen::Vector3d w;                  // angular velocity, body axes
     bool kinematic;
   };
   struct End {
-    int body = -1;                // index into bodies_, -1: point of space
+    int body = -1;  // index into bodies_, -1: point of space
     Eigen::Vector3d s = Eigen::Vector3d::Zero();
     Eigen::Matrix3d arm_skew = Eigen::Matrix3d::Zero();  // [R s]×, per evaluation
   };
   struct JointData {
     End a, b;
-    int point = -1;               // first output of the point tape (b.body < 0)
+    int point = -1;  // first output of the point tape (b.body < 0)
   };
   // One 3×3 block of the factor: row block i, column (pivot) block p.
   struct Update {
@@ -104,9 +104,9 @@ class JointSolver {
   };
   struct Pivot {
     int joint;
-    int diag;                      // slot of A_pp
-    std::vector<int> rows;         // later joints coupled to p (after fill)
-    std::vector<int> slots;        // slot of A_ip for each row
+    int diag;                // slot of A_pp
+    std::vector<int> rows;   // later joints coupled to p (after fill)
+    std::vector<int> slots;  // slot of A_ip for each row
     std::vector<Update> updates;
   };
 

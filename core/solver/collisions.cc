@@ -866,8 +866,8 @@ void CollisionMonitor::Respond(const Impact& impact) {
   // bounce would rise under 1e-6 of the radius in a hop of either body —
   // two bodies of a stack fall together between hops (no relative
   // acceleration), and their grazes of 1e-11 m/s are not impacts.
-  const double own_hop =
-      HopPeriod(std::max(Acceleration(impact.a, t).norm(), Acceleration(impact.b, t).norm()), radius);
+  const double own_hop = HopPeriod(
+      std::max(Acceleration(impact.a, t).norm(), Acceleration(impact.b, t).norm()), radius);
   const double slow_speed = std::max(2.0 * acc_rel.norm() * hop, 1e-6 * radius / own_hop);
   const double approach = pc.points.empty() ? kInf : Approach(impact.a, impact.b, t, pc.points);
   // A lone ball on something immovable keeps the seed's bouncing and comes to

@@ -56,6 +56,9 @@ constexpr double kRestFraction = 1e-3;
 // A rest step is taken only when it spans this many of the steps the
 // integrator would take instead (else the probe costs more than it saves).
 constexpr double kRestMinGain = 4.0;
+// A rate this many ulps (relative) of the free rate a joint force cancels is
+// that cancellation's rounding, not motion.
+constexpr double kRestRounding = 64 * std::numeric_limits<double>::epsilon();
 
 // Dormand–Prince 5(4), FSAL, with its 4th-order continuous extension
 // (Dormand & Prince 1980; dense output coefficients of Hairer, Nørsett &
@@ -91,13 +94,13 @@ Counters& Counters::operator+=(const Counters& o) {
 }
 
 struct Component::Mode {
-  std::vector<char> prescribed;  // per local variable
-  expr::Tape f_tape;             // n outputs: ẋ (ODE rows) or g (prescribed rows)
+  std::vector<char> prescribed;       // per local variable
+  expr::Tape f_tape;                  // n outputs: ẋ (ODE rows) or g (prescribed rows)
   std::vector<expr::NodeId> outputs;  // per row: ẋ's or g's expression
   // Built on first use (PrepareJacobian): everything below but `out` of f.
-  expr::Tape fj_tape;            // the same followed by the Jacobian entries
-  std::vector<int> jrow, jcol;   // local (row, col) of each Jacobian entry
-  expr::Tape gdot_tape;          // ∂g/∂t for prescribed rows whose g depends on t only
+  expr::Tape fj_tape;           // the same followed by the Jacobian entries
+  std::vector<int> jrow, jcol;  // local (row, col) of each Jacobian entry
+  expr::Tape gdot_tape;         // ∂g/∂t for prescribed rows whose g depends on t only
   std::vector<int> gdot_rows;
   std::vector<int> mrow, mcol;  // matrix pattern: n diagonal entries, then jrow/jcol
   std::vector<double> jvals, mvals, out;
@@ -195,11 +198,10 @@ void Component::StartSample() {
   SampleInfo info = wave_.info(last);
   wave_.Resize(0);
   wave_.Append(sys_.t0, x.data(), f.data(), info);
-  // A state at rest (rates all zero) needs no method until something moves
+  // A state at rest (rates zero, see RestSpan) needs no method until something moves
   // it; the stiffness test then waits for the votes of the steps.
   const Mode& m = ModeAt(sys_.t0);
-  const bool still = m.autonomous && inputs_.empty() &&
-                     std::all_of(f.begin(), f.end(), [](double v) { return v == 0.0; });
+  const bool still = m.autonomous && inputs_.empty() && std::isinf(RestSpan(m, 0.0));
   wave_.info(0).implicit = !still && InitialImplicit(sys_.t0);
   jac_sample_ = -1;
 }
@@ -282,9 +284,9 @@ std::unique_ptr<Component::Mode> Component::BuildMode(const std::string& key, do
     }
   }
   m->outputs = outputs;
-  m->autonomous = points_autonomous_ &&
-                  std::none_of(outputs.begin(), outputs.end(),
-                               [&](expr::NodeId e) { return pool.DependsOnTime(e); });
+  m->autonomous =
+      points_autonomous_ && std::none_of(outputs.begin(), outputs.end(),
+                                         [&](expr::NodeId e) { return pool.DependsOnTime(e); });
   m->f_tape = expr::Tape::Compile(pool, outputs);
   m->gdot_tape = expr::Tape::Compile(pool, gdots);
   m->any_prescribed =
@@ -667,21 +669,32 @@ double Component::RestSpan(const Mode& m, double h) {
   const double* x = wave_.x(k);
   const double* f = wave_.f(k);
   const SolverOptions& o = sim_.options();
+  // A rate within rounding of the free rate that the joint forces balanced
+  // (gravity against the joint holding a pendulum) counts as zero.
+  const double t = wave_.time(k);
+  if (joints_) {
+    Load(t, x, Side::kRight);
+    m.f_tape.Evaluate(std::nextafter(t, std::numeric_limits<double>::infinity()), sim_.values(),
+                      fg_.data(), &sim_.externs());
+  }
   double fn = 0.0;
-  for (size_t j = 0; j < n; ++j)
-    if (!m.prescribed[j]) fn = std::max(fn, std::abs(f[j]) / (o.atol + o.rtol * std::abs(x[j])));
+  for (size_t j = 0; j < n; ++j) {
+    if (m.prescribed[j]) continue;
+    if (joints_ && std::abs(f[j]) <= kRestRounding * std::abs(fg_[j])) continue;
+    fn = std::max(fn, std::abs(f[j]) / (o.atol + o.rtol * std::abs(x[j])));
+  }
   if (fn == 0.0) return std::numeric_limits<double>::infinity();
   const double first = kRestFraction / fn;
   if (!(first >= kRestMinGain * h)) return 0.0;
   const double delta = 1.0 / fn;
   for (size_t j = 0; j < n; ++j) y_[j] = m.prescribed[j] ? x[j] : x[j] + delta * f[j];
-  EvalF(m, wave_.time(k), y_.data(), fy_.data(), Side::kRight, false);
+  EvalF(m, t, y_.data(), fy_.data(), Side::kRight, false);
   double jf = 0.0;
   for (size_t j = 0; j < n; ++j)
     if (!m.prescribed[j])
       jf = std::max(jf, std::abs(fy_[j] - f[j]) / delta / (o.atol + o.rtol * std::abs(x[j])));
-  const double second = jf > 0 ? std::sqrt(2.0 * kRestFraction / jf)
-                               : std::numeric_limits<double>::infinity();
+  const double second =
+      jf > 0 ? std::sqrt(2.0 * kRestFraction / jf) : std::numeric_limits<double>::infinity();
   const double span = std::min(first, second);
   return span >= kRestMinGain * h ? span : 0.0;
 }

@@ -73,7 +73,7 @@
 namespace asgard::physics {
 struct EquationSystem;
 class JointSolver;
-}
+}  // namespace asgard::physics
 
 namespace asgard::solver {
 
@@ -91,15 +91,15 @@ struct SolverOptions {
   // trajectory or a hold prescribes still use the implicit path).
   enum class Method : uint8_t { kAuto, kTrapezoidal, kTrBdf2, kExplicit };
   Method method = Method::kAuto;
-  int dense_limit = 40;       // larger components use KLU
+  int dense_limit = 40;  // larger components use KLU
 };
 
 struct Counters {
   long steps = 0;
   long rejected_steps = 0;
   long trbdf2_steps = 0;
-  long explicit_steps = 0;     // Dormand–Prince steps
-  long method_switches = 0;    // explicit ⇄ implicit decisions
+  long explicit_steps = 0;   // Dormand–Prince steps
+  long method_switches = 0;  // explicit ⇄ implicit decisions
   long rhs_evaluations = 0;
   long jacobian_evaluations = 0;
   long factorizations = 0;
@@ -107,7 +107,7 @@ struct Counters {
   long newton_failures = 0;
   long truncated_steps = 0;
   long restarts = 0;
-  long rest_steps = 0;         // steps that kept a state at rest (RestSpan)
+  long rest_steps = 0;  // steps that kept a state at rest (RestSpan)
 
   Counters& operator+=(const Counters& o);
 };
@@ -208,8 +208,8 @@ class Component {
   bool FactorMatrix(Mode& m, double a);
   bool Newton(Mode& m, double t_new, double a, const double* c, double* y, double* fy,
               bool landing);
-  void Rates(const Mode& m, double t, const double* y, const double* fy, const double* y0,
-             double h, double* rate, Side side);
+  void Rates(const Mode& m, double t, const double* y, const double* fy, const double* y0, double h,
+             double* rate, Side side);
   bool TryStep(double h, bool landing, Attempt& out);
   bool TryExplicitStep(const Mode& m, double h, bool landing, Attempt& out);
   bool UseImplicit(const Mode& m, const SampleInfo& info) const;
@@ -232,7 +232,7 @@ class Component {
   Simulation& sim_;
   const physics::EquationSystem& sys_;
   std::unique_ptr<physics::JointSolver> joints_;  // exact links among our bodies
-  bool points_autonomous_ = true;  // no joint holds a body on a moving point
+  bool points_autonomous_ = true;                 // no joint holds a body on a moving point
   int index_;
   std::vector<int> vars_;
   std::vector<int> inputs_;
@@ -269,9 +269,9 @@ class Component {
   bool CheckFinite();
   // scratch
   std::vector<double> x_, y_, fy_, yg_, fg_, c_, r_, est_, rate_, rowsum_, pv_, pw_, gdot_;
-  std::vector<double> k_[7];   // Dormand–Prince stages
+  std::vector<double> k_[7];  // Dormand–Prince stages
   std::vector<double> bubble_;
-  SampleInfo next_info_;       // method state to store with the sample a step appends
+  SampleInfo next_info_;  // method state to store with the sample a step appends
 };
 
 }  // namespace asgard::solver

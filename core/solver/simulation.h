@@ -179,7 +179,7 @@ class Simulation {
   const physics::EquationSystem& sys_;
   SolverOptions options_;
   Partition partition_;
-  std::vector<int> local_index_;  // variable → index within its component
+  std::vector<int> local_index_;             // variable → index within its component
   std::vector<std::vector<int>> joints_of_;  // per component
   std::vector<std::unique_ptr<Component>> components_;
   std::vector<double> values_;

@@ -1,0 +1,116 @@
+// Rest steps (component.h): a state at rest is kept over long spans at no
+// cost, and a state that only looks at rest (an unstable equilibrium a
+// rounding away, slow drift) is integrated as usual.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <string>
+
+#include "core/pipeline/pipeline.h"
+
+namespace asgard {
+namespace {
+
+pipeline::Run Simulate(const std::string& text, double rtol = 1e-8, double atol = 1e-10) {
+  pipeline::RunOptions opts;
+  opts.solver.rtol = rtol;
+  opts.solver.atol = atol;
+  opts.use_scene_tolerances = false;
+  pipeline::Run run = pipeline::Simulate(text, opts);
+  for (const auto& d : run.diagnostics) ADD_FAILURE() << d.span.line << ": " << d.message;
+  EXPECT_TRUE(run.ok) << run.solver_error;
+  return run;
+}
+
+// A ball on an exact joint at a point `len` above (θ = 0, hanging) or below
+// it (θ = π, standing on it), turned by `theta`.
+std::string Pendulum(double theta, double finish) {
+  const double len = 1.0, s = std::sin(theta), c = std::cos(theta);
+  char text[1024];
+  std::snprintf(text, sizeof text,
+                "shape_set ball -desc {-sub {-pos {0 0 0} -sphere 0.1}}\n"
+                "body p -shape ball -mass 1 -init_pos {%.17g %.17g 0}\n"
+                "link -body1 p -offset1 {%.17g %.17g 0} -x 0 -y 0 -z 0\n"
+                "force -body p -y -9.81 -gravitational 1\n"
+                "simulator -finish %g -collisions 0\n",
+                len * s, -len * c, -len * s, len * c, finish);
+  return text;
+}
+
+TEST(RestSteps, APendulumHangingAtRestCostsOneStepHoweverLongTheRun) {
+  for (double finish : {10.0, 1000.0}) {
+    const pipeline::Run run = Simulate(Pendulum(0.0, finish));
+    const solver::Counters c = run.simulation->totals();
+    // The joint force balances gravity to rounding (refined against K), so
+    // every rate vanishes exactly: one rest step reaches the end.
+    EXPECT_EQ(c.steps, 1) << "finish " << finish;
+    EXPECT_EQ(c.rest_steps, 1);
+    EXPECT_EQ(c.jacobian_evaluations, 0);
+    const int v = run.equations->bodies[run.equations->FindBody("p")].first_var;
+    EXPECT_EQ(run.simulation->Value(v + physics::kY, finish), -1.0);
+    EXPECT_EQ(run.simulation->Value(v + physics::kDy, 0.5 * finish), 0.0);
+  }
+}
+
+TEST(RestSteps, AnInvertedPendulumARoundingAwayFromUpFallsAsTheLinearizationSays) {
+  // A physical pendulum (a ball of radius r = 0.1, I = 2/5 m r², on a point
+  // L = 1 from its centre): θ̈ = g L / (L² + 2/5 r²) sin θ near the top, so
+  // θ(t) = θ₀ cosh(λ t) while θ is small.
+  // Its rates at t = 0 are tiny (g θ₀ ≈ 1e-8) but not zero, and J·f is not:
+  // the second-order probe must refuse to keep it standing.
+  const double theta0 = 1e-9, pi = std::acos(-1.0);
+  // Tolerances far below x (which grows from 1e-9 to 1e-5): the comparison
+  // is with the motion, not with the integration error.
+  const pipeline::Run run = Simulate(Pendulum(pi + theta0, 3.0), 1e-10, 1e-18);
+  const int v = run.equations->bodies[run.equations->FindBody("p")].first_var;
+  const double lambda = std::sqrt(9.81 / (1.0 + 0.4 * 0.1 * 0.1));
+  for (double t : {1.0, 2.0, 3.0}) {
+    const double x = run.simulation->Value(v + physics::kX, t);
+    const double expect = -std::sin(theta0 * std::cosh(lambda * t));  // x = L sin(π + θ)
+    // θ ≤ 1e-5 here: the linearization's error is O(θ²) relative, far below
+    // the 1e-4 asked; the run's own error, amplified by e^(λt) ≈ 1e4 at
+    // most from a local 1e-10, stays below it too.
+    EXPECT_NEAR(x, expect, 1e-4 * std::abs(expect)) << "t=" << t;
+  }
+  EXPECT_EQ(run.simulation->totals().rest_steps, 0);
+}
+
+TEST(RestSteps, ABallDriftingSlowlyIsNotFrozen) {
+  // A constant velocity of 1e-12 moves x by 1e-9 over 1000 s, ten times the
+  // absolute tolerance: x must follow it (its velocity component, whose
+  // rate is exactly zero, rests).
+  const pipeline::Run run = Simulate(
+      "shape_set ball -desc {-sub {-pos {0 0 0} -sphere 0.1}}\n"
+      "body b -shape ball -mass 1 -init_pos {0 0 0} -init_dpos {1e-12 0 0}\n"
+      "simulator -finish 1000 -collisions 0\n");
+  const int v = run.equations->bodies[run.equations->FindBody("b")].first_var;
+  EXPECT_NEAR(run.simulation->Value(v + physics::kX, 1000.0), 1e-9, 1e-21);
+  EXPECT_NEAR(run.simulation->Value(v + physics::kX, 400.0), 4e-10, 1e-21);
+  EXPECT_GT(run.simulation->totals().rest_steps, 0);
+  // Every component: a handful of steps for the whole run.
+  for (int c = 0; c < run.simulation->component_count(); ++c)
+    EXPECT_LE(run.simulation->component(c).counters().steps, 12) << c;
+}
+
+TEST(RestSteps, AJumpIntoARestingComponentRestartsItFromTheJump) {
+  // A ball at rest on a pendulum's path: the swing hits it, and the ball's
+  // resting velocity components must take the impulse at the impact time.
+  const pipeline::Run run = Simulate(
+      "shape_set ball -desc {-sub {-pos {0 0 0} -sphere 0.25}}\n"
+      "body p -shape ball -mass 1 -init_pos {-1 0 0}\n"
+      "link -body1 p -offset1 {1 0 0} -x 0 -y 0 -z 0\n"
+      "force -body p -y -9.81 -gravitational 1\n"
+      "body q -shape ball -mass 1 -init_pos {0.5 -1 0} -restitution 1\n"
+      "simulator -finish 2 -collisions 1\n");
+  ASSERT_TRUE(run.collisions);
+  ASSERT_FALSE(run.collisions->impacts().empty());
+  const double t_hit = run.collisions->impacts().front().t;
+  const int v = run.equations->bodies[run.equations->FindBody("q")].first_var;
+  EXPECT_EQ(run.simulation->Value(v + physics::kDx, 0.5 * t_hit), 0.0);
+  EXPECT_GT(run.simulation->Value(v + physics::kDx, t_hit + 1e-3), 0.5);
+  // After the hit the ball moves: x grows.
+  EXPECT_GT(run.simulation->Value(v + physics::kX, 2.0), 0.5 + 1e-3);
+}
+
+}  // namespace
+}  // namespace asgard
