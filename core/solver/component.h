@@ -51,6 +51,18 @@
 //            that have decayed do not hold the step down.
 //   h_next = h · clamp(0.9 err^(−1/3), 0.2, 5).
 //
+// Rest steps (seed 5.2.4: skip what a scene does not need): at a sample of
+// an autonomous mode with no inputs, where the state would move over a span
+// H by H·f and H²/2·J f, both below 1e-3 of the tolerance (J f by one
+// difference of f along f), the state is kept over H with no integration —
+// for ever (up to the next breakpoint) when every rate is zero, counting a
+// rate within 64 ulps of the free rate a joint force cancels as zero.  A
+// body hanging at rest, a velocity with no force on it, a sleeping body:
+// one step per breakpoint, whatever the duration.  An unstable equilibrium
+// a rounding away fails the second-order test and is integrated.  Rejected:
+// velocity thresholds with a sleep timer (game engines) — they freeze slow
+// motion and wake late; this test is against the tolerance.
+//
 // Breakpoints (trajectory interval ends, t compared with constants, knots,
 // collisions): a step never crosses one; it lands on it exactly, and the
 // component restarts there with a new sample holding the right-hand limits.
