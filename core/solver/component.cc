@@ -175,6 +175,15 @@ void Component::Initialize() {
       if (sys_.joints[j].body_b < 0)
         for (expr::NodeId e : sys_.joints[j].p)
           if (sys_.pool.DependsOnTime(e)) points_autonomous_ = false;
+    // Rows a joint force acts on: the accelerations of its bodies.
+    joint_rows_.assign(vars_.size(), 0);
+    for (int j : joints)
+      for (int b : {sys_.joints[j].body_a, sys_.joints[j].body_b}) {
+        if (b < 0 || local_first(b) < 0) continue;
+        for (int slot :
+             {physics::kDx, physics::kDy, physics::kDz, physics::kW1, physics::kW2, physics::kW3})
+          joint_rows_[local_first(b) + slot] = 1;
+      }
     joints_ = std::make_unique<physics::JointSolver>(sys_, joints, local_first);
   }
 
@@ -669,19 +678,23 @@ double Component::RestSpan(const Mode& m, double h) {
   const double* x = wave_.x(k);
   const double* f = wave_.f(k);
   const SolverOptions& o = sim_.options();
+  // Rows no joint force acts on first: a moving body fails here, before the
+  // free rates are evaluated (this runs at every step of such a component).
+  const double t = wave_.time(k);
+  auto weighted = [&](size_t j) { return std::abs(f[j]) / (o.atol + o.rtol * std::abs(x[j])); };
+  double fn = 0.0;
+  for (size_t j = 0; j < n; ++j)
+    if (!m.prescribed[j] && !(joints_ && joint_rows_[j])) fn = std::max(fn, weighted(j));
+  if (fn > 0.0 && !(kRestFraction / fn >= kRestMinGain * h)) return 0.0;
   // A rate within rounding of the free rate that the joint forces balanced
   // (gravity against the joint holding a pendulum) counts as zero.
-  const double t = wave_.time(k);
   if (joints_) {
     Load(t, x, Side::kRight);
     m.f_tape.Evaluate(std::nextafter(t, std::numeric_limits<double>::infinity()), sim_.values(),
                       fg_.data(), &sim_.externs());
-  }
-  double fn = 0.0;
-  for (size_t j = 0; j < n; ++j) {
-    if (m.prescribed[j]) continue;
-    if (joints_ && std::abs(f[j]) <= kRestRounding * std::abs(fg_[j])) continue;
-    fn = std::max(fn, std::abs(f[j]) / (o.atol + o.rtol * std::abs(x[j])));
+    for (size_t j = 0; j < n; ++j)
+      if (!m.prescribed[j] && joint_rows_[j] && std::abs(f[j]) > kRestRounding * std::abs(fg_[j]))
+        fn = std::max(fn, weighted(j));
   }
   if (fn == 0.0) return std::numeric_limits<double>::infinity();
   const double first = kRestFraction / fn;

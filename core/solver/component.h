@@ -243,6 +243,7 @@ class Component {
   const physics::EquationSystem& sys_;
   std::unique_ptr<physics::JointSolver> joints_;  // exact links among our bodies
   bool points_autonomous_ = true;                 // no joint holds a body on a moving point
+  std::vector<char> joint_rows_;                  // per local row: a joint force acts on it
   int index_;
   std::vector<int> vars_;
   std::vector<int> inputs_;
