@@ -394,8 +394,9 @@ void Component::EvalJacobianNumerically(Mode& m, double t, const double* y) {
 // Power iteration on J restricted to the ODE rows, from a fixed start vector
 // (deterministic).  A complex pair makes the iterates rotate rather than
 // converge, but the growth ratio still measures |λ|, which is what the
-// stability limits depend on.
-double Component::SpectralRadius(const Mode& m) {
+// stability limits depend on.  `apply` sets pw_ = J·pv_ / ‖pv_‖∞.
+template <typename Apply>
+double Component::PowerIteration(const Mode& m, Apply apply) {
   const size_t n = vars_.size();
   for (size_t j = 0; j < n; ++j) pv_[j] = m.prescribed[j] ? 0.0 : 1.0 + 0.37 * double(j % 7);
   double rho = 0.0;
@@ -403,16 +404,41 @@ double Component::SpectralRadius(const Mode& m) {
     double norm_v = 0.0;
     for (size_t j = 0; j < n; ++j) norm_v = std::max(norm_v, std::abs(pv_[j]));
     if (norm_v == 0.0) return 0.0;
-    std::fill(pw_.begin(), pw_.end(), 0.0);
-    for (size_t k = 0; k < m.jrow.size(); ++k)
-      if (!m.prescribed[m.jrow[k]] && !m.prescribed[m.jcol[k]])
-        pw_[m.jrow[k]] += m.jvals[k] * pv_[m.jcol[k]] / norm_v;
+    apply(norm_v);
+    for (size_t j = 0; j < n; ++j)
+      if (m.prescribed[j]) pw_[j] = 0.0;
     double norm_w = 0.0;
     for (size_t j = 0; j < n; ++j) norm_w = std::max(norm_w, std::abs(pw_[j]));
     if (it >= 8) rho = std::max(rho, norm_w);  // last iterations: rotation-safe
     std::swap(pv_, pw_);
   }
   return std::isfinite(rho) ? rho : std::numeric_limits<double>::infinity();
+}
+
+double Component::SpectralRadius(const Mode& m) {
+  return PowerIteration(m, [&](double norm_v) {
+    std::fill(pw_.begin(), pw_.end(), 0.0);
+    for (size_t k = 0; k < m.jrow.size(); ++k)
+      if (!m.prescribed[m.jcol[k]]) pw_[m.jrow[k]] += m.jvals[k] * pv_[m.jcol[k]] / norm_v;
+  });
+}
+
+// The same iteration with J·v taken as a difference quotient of f along v,
+// one right-hand side per iteration: no Jacobian is formed, so a component
+// that never turns out stiff never compiles a Jacobian tape.
+double Component::SpectralRadiusMatrixFree(const Mode& m, double t) {
+  const int k = wave_.size() - 1;
+  const size_t n = vars_.size();
+  const double* x = wave_.x(k);
+  double scale = 1.0;
+  for (size_t j = 0; j < n; ++j) scale = std::max(scale, std::abs(x[j]));
+  const double delta = std::sqrt(std::numeric_limits<double>::epsilon()) * scale;
+  EvalF(m, t, x, c_.data(), Side::kRight, false);
+  return PowerIteration(m, [&](double norm_v) {
+    for (size_t j = 0; j < n; ++j) y_[j] = x[j] + delta * (pv_[j] / norm_v);
+    EvalF(m, t, y_.data(), pw_.data(), Side::kRight, false);
+    for (size_t j = 0; j < n; ++j) pw_[j] = (pw_[j] - c_[j]) / delta;
+  });
 }
 
 bool Component::FactorMatrix(Mode& m, double a) {
@@ -622,11 +648,7 @@ bool Component::UseImplicit(const Mode& m, const SampleInfo& info) const {
 // radius of its Jacobian at t0 makes explicit steps stability-bound.
 bool Component::InitialImplicit(double t) {
   if (sim_.options().method != SolverOptions::Method::kAuto) return false;
-  const int k = wave_.size() - 1;
-  Mode& m = ModeAt(t);
-  EvalJacobian(m, t, wave_.x(k));
-  jac_sample_ = -1;
-  return SpectralRadius(m) > kStartStiffRho;
+  return SpectralRadiusMatrixFree(ModeAt(t), t) > kStartStiffRho;
 }
 
 namespace {

@@ -95,6 +95,7 @@ struct SolverOptions {
   double initial_step = 0.0;  // 0: 1e-4 of the interval
   double max_step = 0.0;      // 0: the whole interval
   bool partition = true;      // false: one component for everything
+  bool fuse_chains = true;    // fuse one-to-one chains of components (partition.h)
   enum class Schedule : uint8_t { kEventDriven, kSequential };
   Schedule schedule = Schedule::kEventDriven;
   // kAuto: the explicit Dormand–Prince pair where the component is not stiff,
@@ -224,8 +225,11 @@ class Component {
   bool TryExplicitStep(const Mode& m, double h, bool landing, Attempt& out);
   bool UseImplicit(const Mode& m, const SampleInfo& info) const;
   // Spectral radius of ∂f/∂x (ODE rows) by power iteration on the Jacobian
-  // last evaluated.
+  // last evaluated, or on difference quotients of f at the last sample.
+  template <typename Apply>
+  double PowerIteration(const Mode& m, Apply apply);
   double SpectralRadius(const Mode& m);
+  double SpectralRadiusMatrixFree(const Mode& m, double t);
   bool InitialImplicit(double t);
   double RestSpan(const Mode& m, double h);
   void Restart();

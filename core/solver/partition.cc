@@ -62,24 +62,14 @@ std::vector<std::vector<int>> Tarjan(const std::vector<std::vector<int>>& reads)
   return out;
 }
 
-}  // namespace
-
-Partition PartitionEquations(const std::vector<std::vector<int>>& reads, bool single) {
+// Upstream and downstream lists of each component, from the variables' reads.
+void LinkComponents(const std::vector<std::vector<int>>& reads, Partition& p) {
   const int n = static_cast<int>(reads.size());
-  Partition p;
-  if (single) {
-    if (n > 0) {
-      p.components.emplace_back(n);
-      std::iota(p.components[0].begin(), p.components[0].end(), 0);
-    }
-  } else {
-    p.components = Tarjan(reads);
-  }
   p.component_of.assign(n, -1);
   for (size_t c = 0; c < p.components.size(); ++c)
     for (int v : p.components[c]) p.component_of[v] = static_cast<int>(c);
-  p.upstream.resize(p.components.size());
-  p.downstream.resize(p.components.size());
+  p.upstream.assign(p.components.size(), {});
+  p.downstream.assign(p.components.size(), {});
   for (int i = 0; i < n; ++i) {
     const int ci = p.component_of[i];
     for (int j : reads[i]) {
@@ -93,6 +83,55 @@ Partition PartitionEquations(const std::vector<std::vector<int>>& reads, bool si
     up.erase(std::unique(up.begin(), up.end()), up.end());
     for (int u : up) p.downstream[u].push_back(static_cast<int>(c));
   }
+}
+
+// Fuses each component that reads exactly one other, which it alone reads,
+// with that one (transitively: a chain becomes one component).  Contracting
+// such an arc keeps the graph acyclic, and the fused group takes the place
+// of its last member, after everything any member reads.
+void FuseChains(const std::vector<std::vector<int>>& reads, Partition& p) {
+  const int nc = static_cast<int>(p.components.size());
+  std::vector<int> head(nc);  // the first component of each one's chain
+  std::iota(head.begin(), head.end(), 0);
+  std::vector<int> last(nc, -1);  // per head: the chain's last member
+  for (int c = 0; c < nc; ++c) {
+    const auto& up = p.upstream[c];
+    if (up.size() == 1 && p.downstream[up[0]].size() == 1) head[c] = head[up[0]];
+    last[head[c]] = c;
+  }
+  std::vector<std::vector<int>> fused;
+  std::vector<int> slot(nc, -1);  // head → index in `fused`
+  for (int c = 0; c < nc; ++c) {
+    if (last[head[c]] != c) continue;  // placed with the chain's last member
+    slot[head[c]] = static_cast<int>(fused.size());
+    fused.emplace_back();
+  }
+  for (int c = 0; c < nc; ++c) {
+    auto& group = fused[slot[head[c]]];
+    group.insert(group.end(), p.components[c].begin(), p.components[c].end());
+  }
+  if (static_cast<int>(fused.size()) == nc) return;
+  for (auto& g : fused) std::sort(g.begin(), g.end());
+  p.components = std::move(fused);
+  LinkComponents(reads, p);
+}
+
+}  // namespace
+
+Partition PartitionEquations(const std::vector<std::vector<int>>& reads, bool single,
+                             bool fuse_chains) {
+  const int n = static_cast<int>(reads.size());
+  Partition p;
+  if (single) {
+    if (n > 0) {
+      p.components.emplace_back(n);
+      std::iota(p.components[0].begin(), p.components[0].end(), 0);
+    }
+  } else {
+    p.components = Tarjan(reads);
+  }
+  LinkComponents(reads, p);
+  if (fuse_chains && !single) FuseChains(reads, p);
   return p;
 }
 

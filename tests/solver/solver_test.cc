@@ -84,8 +84,8 @@ TEST(DampedLink, MatchesTheCriticallyDampedClosedForm) {
     const SceneRun run = SimulateOk(testing::DampedLink(k, m, 1.0, 2.0), Tol(1e-8, 1e-10));
     double max_err = 0;
     for (double t = 0; t <= 2; t += 1e-3)
-      max_err = std::max(max_err, std::abs(At(run, "d", physics::kX, t) -
-                                           testing::DampedLinkExact(k, m, 1.0, t)));
+      max_err = std::max(
+          max_err, std::abs(At(run, "d", physics::kX, t) - testing::DampedLinkExact(k, m, 1.0, t)));
     EXPECT_LT(max_err, 1e-6) << "k=" << k;
   }
 }
@@ -127,7 +127,8 @@ TEST(TorqueFreeTop, ConservesEnergyAndMomentumAndFlipsAtThePredictedPeriod) {
   const double I1 = 1, I2 = 2, I3 = 3;
   const double w0[3] = {0.01, 1.0, 0.02};
   const double T = testing::TopPeriod(I1, I2, I3, w0[0], w0[1], w0[2]);
-  const SceneRun run = SimulateOk(testing::Top(I1, I2, I3, "0.01 1.0 0.02", 2.5 * T), Tol(1e-9, 1e-12));
+  const SceneRun run =
+      SimulateOk(testing::Top(I1, I2, I3, "0.01 1.0 0.02", 2.5 * T), Tol(1e-9, 1e-12));
   auto state = [&](double t, double w[3], Eigen::Vector3d& L) {
     for (int a = 0; a < 3; ++a) w[a] = At(run, "top", BodySlot(physics::kW1 + a), t);
     Eigen::Quaterniond q(At(run, "top", physics::kQw, t), At(run, "top", physics::kQx, t),
@@ -203,7 +204,10 @@ TEST(Tolerance, AchievedErrorFallsWithTheRequestedToleranceOverFourDecades) {
 }
 
 TEST(Partition, ALoneSphereUnderGravitySplitsPerAxis) {
-  const SceneRun run = SimulateOk(testing::Projectile(1.0));
+  // The seed's strongly connected components, before chains are fused.
+  solver::SolverOptions so;
+  so.fuse_chains = false;
+  const SceneRun run = SimulateOk(testing::Projectile(1.0), so);
   const auto& sim = *run.simulation;
   for (BodySlot s : {physics::kX, physics::kY, physics::kZ, physics::kDx, physics::kDy,
                      physics::kDz, physics::kW1, physics::kW2, physics::kW3}) {
@@ -216,6 +220,46 @@ TEST(Partition, ALoneSphereUnderGravitySplitsPerAxis) {
   const int cx = sim.component_of(Var(run, "p", physics::kX));
   const int cdx = sim.component_of(Var(run, "p", physics::kDx));
   EXPECT_EQ(sim.partition().upstream[cx], std::vector<int>{cdx});
+}
+
+TEST(Partition, FusedChainsPairEachAxisWithItsRateAndTheSpinWithTheQuaternion) {
+  // {dx} is read by {x} alone and {x} reads only {dx}: one component.  The
+  // quaternion reads three spin components, so it stays apart from them.
+  const SceneRun fused = SimulateOk(testing::Projectile(1.0));
+  const auto& sim = *fused.simulation;
+  for (auto [a, b] : {std::pair{physics::kX, physics::kDx}, std::pair{physics::kY, physics::kDy},
+                      std::pair{physics::kZ, physics::kDz}}) {
+    const int c = sim.component_of(Var(fused, "p", a));
+    EXPECT_EQ(sim.component_of(Var(fused, "p", b)), c);
+    EXPECT_EQ(sim.component(c).variables().size(), 2u);
+    EXPECT_TRUE(sim.partition().upstream[c].empty());
+  }
+  EXPECT_EQ(sim.component_count(), 7);  // 3 axes, 3 spins, the quaternion
+  // The same motion as the unfused components, to the tolerance.
+  solver::SolverOptions so;
+  so.fuse_chains = false;
+  const SceneRun apart = SimulateOk(testing::Projectile(1.0), so);
+  for (double t : {0.25, 0.5, 1.0})
+    for (BodySlot s : {physics::kX, physics::kY, physics::kZ, physics::kDy})
+      EXPECT_NEAR(At(fused, "p", s, t), At(apart, "p", s, t), 1e-6) << t;
+}
+
+TEST(Partition, ChainsAreFusedOnlyWhereOneComponentAloneReadsTheOther) {
+  // b2's x reads b1's x: b1's {x, dx} chain is read by b2's x, and b1's dx by
+  // b1's x alone.  b1.{x,dx} fuse; b2's x reads b1's group and its own dx, so it
+  // does not join either.
+  const std::vector<std::vector<int>> reads = {/*0 b1.x*/ {1}, /*1 b1.dx*/ {}, /*2 b2.x*/ {3, 0},
+                                               /*3 b2.dx*/ {}, /*4 c reads 2*/ {2}};
+  const solver::Partition p = solver::PartitionEquations(reads, false, true);
+  EXPECT_EQ(p.component_of[0], p.component_of[1]);
+  EXPECT_NE(p.component_of[2], p.component_of[0]);
+  EXPECT_NE(p.component_of[2], p.component_of[3]);
+  // b2.x ─▶ 4 is a one-to-one arc: fused.
+  EXPECT_EQ(p.component_of[4], p.component_of[2]);
+  EXPECT_EQ(p.components.size(), 3u);
+  // Dependency order still holds: every upstream precedes its reader.
+  for (size_t c = 0; c < p.components.size(); ++c)
+    for (int u : p.upstream[c]) EXPECT_LT(u, static_cast<int>(c));
 }
 
 TEST(Partition, TwoBodiesWithAMutualXForceShareOneXComponent) {
@@ -233,7 +277,8 @@ TEST(Partition, TwoBodiesWithAMutualXForceShareOneXComponent) {
   EXPECT_EQ(sim.component(c).variables(), expected);
   EXPECT_NE(sim.component_of(Var(run, "b1", physics::kY)),
             sim.component_of(Var(run, "b2", physics::kY)));
-  EXPECT_EQ(sim.component(sim.component_of(Var(run, "b1", physics::kY))).variables().size(), 1u);
+  // b1's y axis is its own chain {y, dy}.
+  EXPECT_EQ(sim.component(sim.component_of(Var(run, "b1", physics::kY))).variables().size(), 2u);
 }
 
 TEST(Partition, TheTwoRodLinkedPendulumFormsOneLargeComponent) {
