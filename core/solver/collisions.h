@@ -159,9 +159,9 @@ class CollisionMonitor {
   const physics::EquationSystem& sys_;
   double separation_;
   double epoch_length_;
-  long epoch_ = 0;    // current epoch
+  long epoch_ = 0;     // current epoch
   bool idle_ = false;  // no pair can collide: no windows are checked
-  long pending_ = 0;  // collidable bodies not yet computed past its end
+  long pending_ = 0;   // collidable bodies not yet computed past its end
   std::vector<BodyInfo> bodies_;
   std::vector<std::vector<int>> bodies_of_component_;
   std::set<std::pair<int, int>> excluded_;  // directly linked parts of one artbody

@@ -141,14 +141,9 @@ bool Component::finished() const {
 
 void Component::Initialize() {
   std::vector<int> reads;
-  const auto& pool = sys_.pool;
   for (int v : vars_) {
     const auto& sv = sys_.variables[v];
-    auto add = [&](expr::NodeId e) {
-      for (int r : pool.Variables(e)) reads.push_back(r);
-    };
-    add(sv.rhs);
-    for (const auto& o : sv.overrides) add(o.expr);
+    reads.insert(reads.end(), sim_.reads(v).begin(), sim_.reads(v).end());
     static_breakpoints_.insert(static_breakpoints_.end(), sv.breakpoints.begin(),
                                sv.breakpoints.end());
   }
@@ -855,7 +850,9 @@ void Component::Restart() {
     Load(t, y_.data(), Side::kRight);
     joints_->ProjectVelocities(t, sim_.values(), y_.data(), m.prescribed.data(), &sim_.externs());
   }
-  for (int pass = 0; pass < 2; ++pass) {
+  // Prescribed rows take their values from their equations (twice: a
+  // prescribed value may read another).
+  for (int pass = 0; pass < 2 && m.any_prescribed; ++pass) {
     EvalF(m, t, y_.data(), fy_.data(), Side::kRight, false);
     for (size_t j = 0; j < n; ++j)
       if (m.prescribed[j]) y_[j] = fy_[j];

@@ -101,9 +101,7 @@ class KluSolver final : public LinearSolver {
     klu_rcond(symbolic_, numeric_, &common_);
     return common_.rcond > 1e-15;
   }
-  void Solve(double* rhs) const override {
-    klu_solve(symbolic_, numeric_, n_, 1, rhs, &common_);
-  }
+  void Solve(double* rhs) const override { klu_solve(symbolic_, numeric_, n_, 1, rhs, &common_); }
 
  private:
   int n_;
@@ -117,8 +115,7 @@ class KluSolver final : public LinearSolver {
 }  // namespace
 
 std::unique_ptr<LinearSolver> LinearSolver::Create(int n, const std::vector<int>& rows,
-                                                   const std::vector<int>& cols,
-                                                   int dense_limit) {
+                                                   const std::vector<int>& cols, int dense_limit) {
   if (n == 1) return std::make_unique<ScalarSolver>(rows);
   if (n <= dense_limit) return std::make_unique<DenseSolver>(n, rows, cols);
   return std::make_unique<KluSolver>(n, rows, cols);

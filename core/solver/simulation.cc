@@ -58,7 +58,8 @@ std::vector<std::vector<int>> ReadsOf(const physics::EquationSystem& sys) {
 
 Simulation::Simulation(const physics::EquationSystem& system, SolverOptions options)
     : sys_(system), options_(options) {
-  partition_ = PartitionEquations(ReadsOf(sys_), !options_.partition, options_.fuse_chains);
+  reads_ = ReadsOf(sys_);
+  partition_ = PartitionEquations(reads_, !options_.partition, options_.fuse_chains);
   values_.assign(sys_.variables.size(), 0.0);
   externs_ = sys_.externs();
   const double span = sys_.t1 - sys_.t0;

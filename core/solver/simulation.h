@@ -102,6 +102,9 @@ class Simulation {
   int component_of(int var) const { return partition_.component_of[var]; }
   // Exact joints (indices into the system's joints) whose bodies component c holds.
   const std::vector<int>& joints_of(int c) const { return joints_of_[c]; }
+  // The variables that the equation of `var` reads (its right-hand side and
+  // overrides; a jointed group's acceleration rows read the whole group).
+  const std::vector<int>& reads(int var) const { return reads_[var]; }
   // Index of `var` within its component's waveform.
   int local_index(int var) const { return local_index_[var]; }
   Counters totals() const;
@@ -181,6 +184,7 @@ class Simulation {
   Partition partition_;
   std::vector<int> local_index_;             // variable → index within its component
   std::vector<std::vector<int>> joints_of_;  // per component
+  std::vector<std::vector<int>> reads_;      // per variable
   std::vector<std::unique_ptr<Component>> components_;
   std::vector<double> values_;
   expr::ExternFn externs_;

@@ -10,8 +10,10 @@ void Waveform::Append(double t, const double* x, const double* f, SampleInfo inf
   times_.push_back(t);
   x_.insert(x_.end(), x, x + n_);
   f_.insert(f_.end(), f, f + n_);
-  if (bubble) b_.insert(b_.end(), bubble, bubble + n_);
-  else b_.resize(b_.size() + n_, 0.0);
+  if (bubble)
+    b_.insert(b_.end(), bubble, bubble + n_);
+  else
+    b_.resize(b_.size() + n_, 0.0);
   info_.push_back(info);
 }
 
@@ -25,7 +27,8 @@ void Waveform::Resize(int k) {
 
 int Waveform::KeepIndex(double t) const {
   // First sample with time >= t.
-  const int k = static_cast<int>(std::lower_bound(times_.begin(), times_.end(), t) - times_.begin());
+  const int k =
+      static_cast<int>(std::lower_bound(times_.begin(), times_.end(), t) - times_.begin());
   if (k < size() && times_[k] == t) return k;
   return std::max(0, k - 1);
 }

@@ -37,12 +37,12 @@ enum class Side : uint8_t { kLeft, kRight };
 // What the integrator needs to continue from a sample exactly as it did the
 // first time.
 struct SampleInfo {
-  double h_next = 0.0;   // step size proposed for the step starting here
-  bool restart = false;  // no usable step history before this sample
-  bool implicit = false; // the component was integrating implicitly (stiff) here
-  uint8_t stiff_votes = 0;   // steps that argued for the other method
-  uint8_t calm_votes = 0;    // explicit: consecutive steps that did not look stiff
-  double err_prev = 1e-4;    // last accepted error estimate (PI step control)
+  double h_next = 0.0;      // step size proposed for the step starting here
+  bool restart = false;     // no usable step history before this sample
+  bool implicit = false;    // the component was integrating implicitly (stiff) here
+  uint8_t stiff_votes = 0;  // steps that argued for the other method
+  uint8_t calm_votes = 0;   // explicit: consecutive steps that did not look stiff
+  double err_prev = 1e-4;   // last accepted error estimate (PI step control)
 };
 
 class Waveform {
