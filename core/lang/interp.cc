@@ -25,9 +25,11 @@
 //    relative to a known command.  Errors are located from -errorline and the
 //    "while executing" text of errorInfo.
 //  * Nothing here throws out of Evaluate; Tcl state never outlives it.
+#include <dlfcn.h>
 #include <malloc.h>
 #include <setjmp.h>
 #include <tcl.h>
+#include <tclTomMath.h>
 
 #include <algorithm>
 #include <chrono>
@@ -89,6 +91,31 @@ thread_local char panic_message[256];
   }
   std::fprintf(stderr, "Tcl panic: %s\n", panic_message);
   std::abort();
+}
+
+// Integers.  Tcl's big-integer arithmetic runs inside one `expr` without
+// returning to the interpreter, so neither the time limit nor the memory
+// check can stop `7**99999999`, `1 << 99999999` or a 10-million-digit
+// literal, and turning such a number into text takes time quadratic in its
+// digits.  The big-integer primitives that make a number grow are wrapped
+// below (Tcl calls them through its procedure linkage table, so the
+// executable's definitions take their place); one that would make a number
+// of more than kMaxIntegerBits bits during a scene evaluation stops it the
+// way a Tcl panic does (the interpreter is abandoned, the error names the
+// limit).  Outside a scene evaluation they only forward.
+constexpr long kMaxIntegerBits = 1L << 18;  // 262144 bits, 78913 decimal digits
+
+long DigitBits(const mp_int* a) { return static_cast<long>(a->used) * MP_DIGIT_BIT; }
+
+void CheckIntegerBits(long bits) {
+  if (bits <= kMaxIntegerBits || panic_target == nullptr) return;
+  ScenePanic("an integer would have about %ld bits; the scene limit is %ld bits (%ld digits)", bits,
+             kMaxIntegerBits, static_cast<long>(kMaxIntegerBits * 0.30103));
+}
+
+template <typename Fn>
+Fn Real(const char* name) {
+  return reinterpret_cast<Fn>(dlsym(RTLD_NEXT, name));
 }
 
 void InitTcl() {
@@ -730,3 +757,52 @@ std::string FormatDiagnostic(std::string_view filename, const scene::Diagnostic&
 }
 
 }  // namespace asgard::lang
+
+// The wrapped big-integer primitives (see kMaxIntegerBits).
+using asgard::lang::CheckIntegerBits;
+using asgard::lang::DigitBits;
+using asgard::lang::Real;
+
+extern "C" {
+
+mp_err TclBN_mp_mul(const mp_int* a, const mp_int* b, mp_int* c) {
+  static const auto real = Real<mp_err (*)(const mp_int*, const mp_int*, mp_int*)>("TclBN_mp_mul");
+  CheckIntegerBits(DigitBits(a) + DigitBits(b));
+  return real(a, b, c);
+}
+
+mp_err TclBN_mp_sqr(const mp_int* a, mp_int* b) {
+  static const auto real = Real<mp_err (*)(const mp_int*, mp_int*)>("TclBN_mp_sqr");
+  CheckIntegerBits(2 * DigitBits(a));
+  return real(a, b);
+}
+
+mp_err TclBN_mp_mul_d(const mp_int* a, mp_digit b, mp_int* c) {
+  static const auto real = Real<mp_err (*)(const mp_int*, mp_digit, mp_int*)>("TclBN_mp_mul_d");
+  CheckIntegerBits(DigitBits(a) + MP_DIGIT_BIT);
+  return real(a, b, c);
+}
+
+mp_err TclBN_mp_mul_2d(const mp_int* a, int d, mp_int* c) {
+  static const auto real = Real<mp_err (*)(const mp_int*, int, mp_int*)>("TclBN_mp_mul_2d");
+  CheckIntegerBits(DigitBits(a) + d);
+  return real(a, d, c);
+}
+
+mp_err TclBN_mp_lshd(mp_int* a, int shift) {
+  static const auto real = Real<mp_err (*)(mp_int*, int)>("TclBN_mp_lshd");
+  CheckIntegerBits(DigitBits(a) + static_cast<long>(shift) * MP_DIGIT_BIT);
+  return real(a, shift);
+}
+
+mp_err TclBN_mp_expt_d(const mp_int* a, unsigned int b, mp_int* c) {
+  static const auto real =
+      Real<mp_err (*)(const mp_int*, unsigned int, mp_int*)>("TclBN_mp_expt_d");
+  // |a| ≤ 1 stays small whatever the exponent.
+  if (a->used > 1 || (a->used == 1 && a->dp[0] > 1))
+    CheckIntegerBits(static_cast<long>(
+        std::min<double>(static_cast<double>(TclBN_mp_count_bits(a) - 1) * b, 1e15)));
+  return real(a, b, c);
+}
+
+}  // extern "C"
