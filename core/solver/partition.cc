@@ -85,19 +85,32 @@ void LinkComponents(const std::vector<std::vector<int>>& reads, Partition& p) {
   }
 }
 
-// Fuses each component that reads exactly one other, which it alone reads,
-// with that one (transitively: a chain becomes one component).  Contracting
-// such an arc keeps the graph acyclic, and the fused group takes the place
-// of its last member, after everything any member reads.
+// Fuses each component with the components it reads when it alone reads
+// each of them ({dx} ─▶ {x}; a ball's three spins ─▶ its quaternion;
+// transitively, so a chain becomes one component).  Inductively only a
+// group's last member has arcs leaving the group, so contracting these arcs
+// keeps the graph acyclic, and the group takes the place of its last member,
+// after everything any member reads.
 void FuseChains(const std::vector<std::vector<int>>& reads, Partition& p) {
   const int nc = static_cast<int>(p.components.size());
-  std::vector<int> head(nc);  // the first component of each one's chain
-  std::iota(head.begin(), head.end(), 0);
-  std::vector<int> last(nc, -1);  // per head: the chain's last member
+  std::vector<int> parent(nc);  // union–find over components
+  std::iota(parent.begin(), parent.end(), 0);
+  auto find = [&](int c) {
+    while (parent[c] != c) c = parent[c] = parent[parent[c]];
+    return c;
+  };
+  std::vector<int> last(nc, -1);  // per root: the group's last member
+  std::vector<int> head(nc);      // per component: its group's root
   for (int c = 0; c < nc; ++c) {
     const auto& up = p.upstream[c];
-    if (up.size() == 1 && p.downstream[up[0]].size() == 1) head[c] = head[up[0]];
-    last[head[c]] = c;
+    bool alone = !up.empty();
+    for (int u : up) alone = alone && p.downstream[u].size() == 1;
+    if (alone)
+      for (int u : up) parent[find(u)] = c;
+  }
+  for (int c = 0; c < nc; ++c) {
+    head[c] = find(c);
+    last[head[c]] = std::max(last[head[c]], c);
   }
   std::vector<std::vector<int>> fused;
   std::vector<int> slot(nc, -1);  // head → index in `fused`

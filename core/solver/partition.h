@@ -28,12 +28,13 @@ struct Partition {
 
 // `reads[i]` lists the variables that the equation of variable i reads.
 // With `single` every variable goes into one component (the seed's
-// unpartitioned variant).  With `fuse_chains` a component that reads only
-// one other, read by it alone, joins that one: {dx} ─▶ {x} becomes {x, dx}
-// and a body's {ω} ─▶ {q} one component.  Such a pair shares its time scale
-// (x moves as fast as dx changes), so apart they take about the same steps
-// twice, and the reader pays an interpolation of the other's waveform at
-// every stage; together they take one set of steps.
+// unpartitioned variant).  With `fuse_chains` a component joins the
+// components it reads where it alone reads each of them: {dx} ─▶ {x} becomes
+// {x, dx}, and a body's spins ─▶ its quaternion one component.  Such groups
+// share their time scale (x moves as fast as dx changes), so apart they take
+// about the same steps several times, and the reader pays an interpolation
+// of the others' waveforms at every stage; together they take one set of
+// steps.
 Partition PartitionEquations(const std::vector<std::vector<int>>& reads, bool single = false,
                              bool fuse_chains = false);
 

@@ -65,7 +65,7 @@ const std::string kBall =
 const std::string kLong =
     "simulator -finish 15 -maxstep 0.0002 -collisions 0\n"
     "shape_set ball -desc \\{-sub \\{-sphere 0.2\\}\\}\n"
-    "for \\{set i 0\\} \\{$i < 4\\} \\{incr i\\} \\{\n"
+    "for \\{set i 0\\} \\{$i < 12\\} \\{incr i\\} \\{\n"
     "  body b$i -shape ball -init_pos [list $i 0 0] -init_dpos \\{0 1 0\\}\n"
     "  force -body b$i -y -9.8 -gravitational 1\n\\}\n";
 
@@ -164,7 +164,7 @@ TEST(Slaves, ASlaveKilledMidConversionIsRestartedOnce) {
   EXPECT_NE(w.out.find("animation 1: asgard-core killed by signal 9"), std::string::npos) << w.out;
   EXPECT_NE(w.out.find("it was restarted once"), std::string::npos) << w.out;
   const std::string text = PdfText(pdf);
-  EXPECT_NE(text.find("4 bodies, t = 0 .. 15 s"), std::string::npos) << text;
+  EXPECT_NE(text.find("12 bodies, t = 0 .. 15 s"), std::string::npos) << text;
   EXPECT_NE(text.find("frame at t = 0.00 s"), std::string::npos) << "a live frame: " << text;
   EXPECT_NE(text.find("The text after the animations."), std::string::npos) << text;
 }

@@ -224,7 +224,7 @@ TEST(Partition, ALoneSphereUnderGravitySplitsPerAxis) {
 
 TEST(Partition, FusedChainsPairEachAxisWithItsRateAndTheSpinWithTheQuaternion) {
   // {dx} is read by {x} alone and {x} reads only {dx}: one component.  The
-  // quaternion reads three spin components, so it stays apart from them.
+  // quaternion alone reads each of the three spin components: one more.
   const SceneRun fused = SimulateOk(testing::Projectile(1.0));
   const auto& sim = *fused.simulation;
   for (auto [a, b] : {std::pair{physics::kX, physics::kDx}, std::pair{physics::kY, physics::kDy},
@@ -234,7 +234,11 @@ TEST(Partition, FusedChainsPairEachAxisWithItsRateAndTheSpinWithTheQuaternion) {
     EXPECT_EQ(sim.component(c).variables().size(), 2u);
     EXPECT_TRUE(sim.partition().upstream[c].empty());
   }
-  EXPECT_EQ(sim.component_count(), 7);  // 3 axes, 3 spins, the quaternion
+  const int cq = sim.component_of(Var(fused, "p", physics::kQw));
+  for (BodySlot s : {physics::kW1, physics::kW2, physics::kW3})
+    EXPECT_EQ(sim.component_of(Var(fused, "p", s)), cq);
+  EXPECT_EQ(sim.component(cq).variables().size(), 7u);
+  EXPECT_EQ(sim.component_count(), 4);  // 3 axes, the rotation
   // The same motion as the unfused components, to the tolerance.
   solver::SolverOptions so;
   so.fuse_chains = false;
@@ -244,22 +248,36 @@ TEST(Partition, FusedChainsPairEachAxisWithItsRateAndTheSpinWithTheQuaternion) {
       EXPECT_NEAR(At(fused, "p", s, t), At(apart, "p", s, t), 1e-6) << t;
 }
 
-TEST(Partition, ChainsAreFusedOnlyWhereOneComponentAloneReadsTheOther) {
-  // b2's x reads b1's x: b1's {x, dx} chain is read by b2's x, and b1's dx by
-  // b1's x alone.  b1.{x,dx} fuse; b2's x reads b1's group and its own dx, so it
-  // does not join either.
-  const std::vector<std::vector<int>> reads = {/*0 b1.x*/ {1}, /*1 b1.dx*/ {}, /*2 b2.x*/ {3, 0},
-                                               /*3 b2.dx*/ {}, /*4 c reads 2*/ {2}};
+TEST(Partition, ComponentsAreFusedOnlyWhereOneComponentAloneReadsThem) {
+  // b1.x reads b1.dx; b2.x reads b2.dx and b1.x; 4 reads b2.x; 5 reads b1.x.
+  // b1's dx is read by b1's x alone: they fuse.  b1's x is read by two, so
+  // b2's x takes in neither it nor (as a reader of both) its own dx; 4 alone
+  // reads b2's x and takes it in.
+  const std::vector<std::vector<int>> reads = {
+      /*0 b1.x*/ {1}, /*1 b1.dx*/ {}, /*2 b2.x*/ {3, 0},
+      /*3 b2.dx*/ {}, /*4*/ {2},      /*5*/ {0}};
   const solver::Partition p = solver::PartitionEquations(reads, false, true);
   EXPECT_EQ(p.component_of[0], p.component_of[1]);
   EXPECT_NE(p.component_of[2], p.component_of[0]);
   EXPECT_NE(p.component_of[2], p.component_of[3]);
-  // b2.x ─▶ 4 is a one-to-one arc: fused.
   EXPECT_EQ(p.component_of[4], p.component_of[2]);
-  EXPECT_EQ(p.components.size(), 3u);
+  EXPECT_NE(p.component_of[5], p.component_of[0]);
+  EXPECT_EQ(p.components.size(), 4u);
+  // Components read by one reader alone join it: 0 and 1 feed only 2, 2 and
+  // 3 feed only 4, so all five are one.  In `shared` 1 also feeds 3, so
+  // neither 2 nor 3 takes it in, and nothing fuses.
+  const std::vector<std::vector<int>> fan = {/*0*/ {}, /*1*/ {}, /*2 reads 0, 1*/ {0, 1}, /*3*/ {},
+                                             /*4 reads 3, 2*/ {3, 2}};
+  const solver::Partition q = solver::PartitionEquations(fan, false, true);
+  EXPECT_EQ(q.components.size(), 1u);
+  const std::vector<std::vector<int>> shared = {/*0*/ {}, /*1*/ {}, /*2 reads 0, 1*/ {0, 1},
+                                                /*3 reads 1*/ {1}};
+  const solver::Partition r = solver::PartitionEquations(shared, false, true);
+  EXPECT_EQ(r.components.size(), 4u);
   // Dependency order still holds: every upstream precedes its reader.
-  for (size_t c = 0; c < p.components.size(); ++c)
-    for (int u : p.upstream[c]) EXPECT_LT(u, static_cast<int>(c));
+  for (const solver::Partition* x : {&p, &q, &r})
+    for (size_t c = 0; c < x->components.size(); ++c)
+      for (int u : x->upstream[c]) EXPECT_LT(u, static_cast<int>(c));
 }
 
 TEST(Partition, TwoBodiesWithAMutualXForceShareOneXComponent) {
