@@ -201,13 +201,13 @@ bool WriteJson(const std::string& path, const std::string& scene_file, const Fra
 }
 
 void PrintCounters(std::ostream& out, const asgard::solver::Counters& c) {
-  out << "  steps " << c.steps << " (rejected " << c.rejected_steps << ", at rest "
-      << c.rest_steps << ", explicit "
-      << c.explicit_steps << ", TR-BDF2 " << c.trbdf2_steps << ", method switches "
-      << c.method_switches << "), rhs evaluations " << c.rhs_evaluations << ", jacobians "
-      << c.jacobian_evaluations << ", factorizations " << c.factorizations << ", newton iterations "
-      << c.newton_iterations << " (failures " << c.newton_failures << "), truncated steps "
-      << c.truncated_steps << ", restarts " << c.restarts << "\n";
+  out << "  steps " << c.steps << " (rejected " << c.rejected_steps << ", at rest " << c.rest_steps
+      << ", ballistic " << c.ballistic_steps << ", explicit " << c.explicit_steps << ", TR-BDF2 "
+      << c.trbdf2_steps << ", method switches " << c.method_switches << "), rhs evaluations "
+      << c.rhs_evaluations << ", jacobians " << c.jacobian_evaluations << ", factorizations "
+      << c.factorizations << ", newton iterations " << c.newton_iterations << " (failures "
+      << c.newton_failures << "), truncated steps " << c.truncated_steps << ", restarts "
+      << c.restarts << "\n";
 }
 
 void PrintStats(const asgard::pipeline::Run& run) {

@@ -93,6 +93,20 @@ Counters& Counters::operator+=(const Counters& o) {
   return *this;
 }
 
+namespace {
+struct Plan {
+  double t_end;
+  bool landing;
+};
+}  // namespace
+
+static Plan PlanStep(double t, double h, double bp, double t1) {
+  const double lim = std::min(bp, t1);
+  // Do not leave a sliver before the limit: stretch up to 1% to reach it.
+  if (t + 1.01 * h >= lim) return {lim, lim == bp};
+  return {t + h, false};
+}
+
 struct Component::Mode {
   std::vector<char> prescribed;       // per local variable
   expr::Tape f_tape;                  // n outputs: ẋ (ODE rows) or g (prescribed rows)
@@ -109,6 +123,10 @@ struct Component::Mode {
   // No row depends on t (nor on a moving joint point): with constant inputs
   // a state where the rates vanish stays (rest steps).
   bool autonomous = false;
+  // Motion under constant forces (BallisticRows): per row, -1 where the rate
+  // is a constant, else the local row whose variable the rate is; empty when
+  // the mode is not of that form.
+  std::vector<int> ballistic;
 };
 
 struct Component::Attempt {
@@ -143,14 +161,14 @@ void Component::Initialize() {
   std::vector<int> reads;
   for (int v : vars_) {
     const auto& sv = sys_.variables[v];
-    reads.insert(reads.end(), sim_.reads(v).begin(), sim_.reads(v).end());
+    for (int r : sim_.reads(v))
+      if (sim_.component_of(r) != index_) reads.push_back(r);
     static_breakpoints_.insert(static_breakpoints_.end(), sv.breakpoints.begin(),
                                sv.breakpoints.end());
   }
   std::sort(reads.begin(), reads.end());
   reads.erase(std::unique(reads.begin(), reads.end()), reads.end());
-  for (int r : reads)
-    if (!std::binary_search(vars_.begin(), vars_.end(), r)) inputs_.push_back(r);
+  inputs_ = std::move(reads);
   // An upstream jump makes our rates jump: land on upstream breakpoints too.
   for (int u : sim_.partition().upstream[index_]) {
     const auto& ub = sim_.component(u).static_breakpoints_;
@@ -206,7 +224,7 @@ void Component::StartSample() {
   // it; the stiffness test then waits for the votes of the steps.
   const Mode& m = ModeAt(sys_.t0);
   const bool still = m.autonomous && inputs_.empty() && std::isinf(RestSpan(m, 0.0));
-  wave_.info(0).implicit = !still && InitialImplicit(sys_.t0);
+  wave_.info(0).implicit = !still && m.ballistic.empty() && InitialImplicit(sys_.t0);
   jac_sample_ = -1;
 }
 
@@ -295,8 +313,58 @@ std::unique_ptr<Component::Mode> Component::BuildMode(const std::string& key, do
   m->gdot_tape = expr::Tape::Compile(pool, gdots);
   m->any_prescribed =
       std::any_of(m->prescribed.begin(), m->prescribed.end(), [](char p) { return p != 0; });
+  if (m->autonomous && !m->any_prescribed && !joints_ && inputs_.empty())
+    m->ballistic = BallisticRows(outputs);
   gdot_.resize(std::max(gdot_.size(), m->gdot_rows.size()));
   return m;
+}
+
+// A mode whose every rate is a constant a, or a variable v of ours whose own
+// rate is a constant (ẋ = v, v̇ = a: free flight under constant forces) moves
+// along the quadratic x + H v + H²/2 a exactly, over any span.
+std::vector<int> Component::BallisticRows(const std::vector<expr::NodeId>& outputs) const {
+  const auto& pool = sys_.pool;
+  const int n = static_cast<int>(vars_.size());
+  std::vector<int> rows(n, -1);
+  for (int j = 0; j < n; ++j) {
+    if (pool.IsConst(outputs[j])) continue;
+    const expr::Node& node = pool.node(outputs[j]);
+    if (node.op != expr::Op::kVar) return {};
+    auto it = std::lower_bound(vars_.begin(), vars_.end(), node.index);
+    if (it == vars_.end() || *it != node.index) return {};
+    const int k = static_cast<int>(it - vars_.begin());
+    if (!pool.IsConst(outputs[k])) return {};
+    rows[j] = k;
+  }
+  return rows;
+}
+
+// One exact step of a ballistic mode to the next breakpoint (or the step
+// limit): positions on their quadratics, velocities on their lines.
+void Component::BallisticStep(const Mode& m, double t, double h_max) {
+  const int k = wave_.size() - 1;
+  const size_t n = vars_.size();
+  const double* x = wave_.x(k);
+  const double* f = wave_.f(k);
+  const Plan plan = PlanStep(t, h_max, NextBreakpoint(t), sys_.t1);
+  const double h = plan.t_end - t;
+  for (size_t j = 0; j < n; ++j)
+    if (m.ballistic[j] < 0) {
+      x_[j] = x[j] + h * f[j];
+      rate_[j] = f[j];
+    }
+  for (size_t j = 0; j < n; ++j)
+    if (const int v = m.ballistic[j]; v >= 0) {
+      x_[j] = x[j] + h * f[j] + 0.5 * h * h * f[v];
+      rate_[j] = x_[v];
+    }
+  SampleInfo next = wave_.info(k);
+  next.restart = false;
+  wave_.Append(plan.t_end, x_.data(), rate_.data(), next);
+  ++counters_.steps;
+  ++counters_.ballistic_steps;
+  jac_sample_ = -1;
+  if (plan.landing) Restart();
 }
 
 // ---- evaluation --------------------------------------------------------------
@@ -646,20 +714,6 @@ bool Component::InitialImplicit(double t) {
   return SpectralRadiusMatrixFree(ModeAt(t), t) > kStartStiffRho;
 }
 
-namespace {
-struct Plan {
-  double t_end;
-  bool landing;
-};
-}  // namespace
-
-static Plan PlanStep(double t, double h, double bp, double t1) {
-  const double lim = std::min(bp, t1);
-  // Do not leave a sliver before the limit: stretch up to 1% to reach it.
-  if (t + 1.01 * h >= lim) return {lim, lim == bp};
-  return {t + h, false};
-}
-
 double Component::NextEnd() const {
   const double t = wave_.t_end();
   const double h = PendingRestart() ? sim_.restart_step() : wave_.info(wave_.size() - 1).h_next;
@@ -760,6 +814,10 @@ bool Component::Step() {
       if (plan.landing) Restart();
       return true;
     }
+  }
+  if (!mode.ballistic.empty() && o.method == SolverOptions::Method::kAuto) {
+    BallisticStep(mode, t, h_max);
+    return true;
   }
   bool rejected = false;
   for (;;) {

@@ -120,7 +120,8 @@ struct Counters {
   long newton_failures = 0;
   long truncated_steps = 0;
   long restarts = 0;
-  long rest_steps = 0;  // steps that kept a state at rest (RestSpan)
+  long rest_steps = 0;       // steps that kept a state at rest (RestSpan)
+  long ballistic_steps = 0;  // exact steps of motion under constant forces
 
   Counters& operator+=(const Counters& o);
 };
@@ -139,7 +140,7 @@ inline constexpr CounterField kCounterFields[] = {
     ASGARD_COUNTER(rhs_evaluations), ASGARD_COUNTER(jacobian_evaluations),
     ASGARD_COUNTER(factorizations), ASGARD_COUNTER(newton_iterations),
     ASGARD_COUNTER(newton_failures), ASGARD_COUNTER(truncated_steps), ASGARD_COUNTER(restarts),
-    ASGARD_COUNTER(rest_steps)};
+    ASGARD_COUNTER(rest_steps), ASGARD_COUNTER(ballistic_steps)};
 #undef ASGARD_COUNTER
 // clang-format on
 static_assert(sizeof(kCounterFields) / sizeof(kCounterFields[0]) * sizeof(long) == sizeof(Counters),
@@ -211,6 +212,8 @@ class Component {
   Mode& ModeAt(double t);
   std::string ModeKey(double t) const;
   std::unique_ptr<Mode> BuildMode(const std::string& key, double t);
+  std::vector<int> BallisticRows(const std::vector<expr::NodeId>& outputs) const;
+  void BallisticStep(const Mode& m, double t, double h_max);
   // Fills the global value array with y and with the inputs at t.
   void Load(double t, const double* y, Side side);
   void EvalF(const Mode& m, double t, const double* y, double* out, Side side, bool landing);

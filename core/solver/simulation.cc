@@ -19,8 +19,8 @@ std::vector<std::vector<int>> ReadsOf(const physics::EquationSystem& sys) {
     }
   }
   // An exact joint's force depends on the whole state of every body it
-  // connects, directly or through other joints: the acceleration rows of a
-  // jointed group read all of the group's variables.
+  // connects, directly or through other joints: a jointed group must be one
+  // component.
   const int nb = static_cast<int>(sys.bodies.size());
   std::vector<int> root(nb);
   for (int b = 0; b < nb; ++b) root[b] = b;
@@ -37,15 +37,20 @@ std::vector<std::vector<int>> ReadsOf(const physics::EquationSystem& sys) {
   for (auto& g : groups) {
     std::sort(g.begin(), g.end());
     g.erase(std::unique(g.begin(), g.end()), g.end());
-    std::vector<int> all;
-    for (int b : g)
-      for (int s = 0; s < physics::kBodySlots; ++s) all.push_back(sys.bodies[b].first_var + s);
-    for (int b : g)
+    // Each body's acceleration rows read its own state and the next body's
+    // (a ring): the group is one strongly connected component, as it would
+    // be with every row reading every variable, at a cost linear in the
+    // group's size rather than quadratic.
+    for (size_t i = 0; i < g.size(); ++i) {
+      const int own = sys.bodies[g[i]].first_var;
+      const int next = sys.bodies[g[(i + 1) % g.size()]].first_var;
       for (int s :
            {physics::kDx, physics::kDy, physics::kDz, physics::kW1, physics::kW2, physics::kW3}) {
-        auto& r = reads[sys.bodies[b].first_var + s];
-        r.insert(r.end(), all.begin(), all.end());
+        auto& r = reads[own + s];
+        for (int k = 0; k < physics::kBodySlots; ++k) r.push_back(own + k);
+        r.push_back(next);
       }
+    }
   }
   for (auto& r : reads) {
     std::sort(r.begin(), r.end());

@@ -103,7 +103,8 @@ class Simulation {
   // Exact joints (indices into the system's joints) whose bodies component c holds.
   const std::vector<int>& joints_of(int c) const { return joints_of_[c]; }
   // The variables that the equation of `var` reads (its right-hand side and
-  // overrides; a jointed group's acceleration rows read the whole group).
+  // overrides; a jointed group's acceleration rows also read their body and
+  // the next body of the group, which makes the group one component).
   const std::vector<int>& reads(int var) const { return reads_[var]; }
   // Index of `var` within its component's waveform.
   int local_index(int var) const { return local_index_[var]; }

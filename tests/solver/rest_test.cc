@@ -114,3 +114,68 @@ TEST(RestSteps, AJumpIntoARestingComponentRestartsItFromTheJump) {
 
 }  // namespace
 }  // namespace asgard
+
+namespace asgard {
+namespace {
+
+// Free flight under constant forces (BallisticStep): x + v t + a t²/2 over
+// the whole run in one exact step per component, at every time a reader
+// asks for (the Hermite interpolant of a quadratic is the quadratic).
+TEST(BallisticSteps, FreeBallsCostOneStepPerComponentAndFollowTheirParabolas) {
+  std::string text = "shape_set ball -desc {-sub {-pos {0 0 0} -sphere 0.2}}\n";
+  const int n = 200;
+  for (int i = 0; i < n; ++i) {
+    char line[256];
+    std::snprintf(line, sizeof line,
+                  "body b%d -shape ball -mass 2 -init_pos {%d 0 %d} -init_dpos {%g %g 0.5}\n"
+                  "force -body b%d -x 0 -y -9.81 -z %g -gravitational 1\n",
+                  i, 3 * (i % 20), 3 * (i / 20), 0.01 * (i + 1), 1.0 + 0.1 * i, i, -0.5 * (i % 3));
+    text += line;
+  }
+  text += "simulator -finish 100 -collisions 0\n";
+  const pipeline::Run run = Simulate(text);
+  const solver::Counters c = run.simulation->totals();
+  // {x, dx}, {y, dy}, {z, dz} and the rotation (at rest) per ball.
+  EXPECT_EQ(run.simulation->component_count(), 4 * n);
+  EXPECT_EQ(c.steps, 4 * n);
+  EXPECT_EQ(c.ballistic_steps, 3 * n);
+  EXPECT_EQ(c.rest_steps, n);
+  for (int i = 0; i < n; i += 37) {
+    const int v = run.equations->bodies[run.equations->FindBody("b" + std::to_string(i))].first_var;
+    const double vx = 0.01 * (i + 1), vy = 1.0 + 0.1 * i, az = -0.5 * (i % 3);
+    for (double t : {0.0, 0.37, 13.0, 61.5, 100.0}) {
+      const double y = vy * t - 0.5 * 9.81 * t * t;
+      // Rounding only: the terms reach 5e4, an ulp of which is 7e-12, and the
+      // interpolation weights add a few more.
+      EXPECT_NEAR(run.simulation->Value(v + physics::kX, t), 3 * (i % 20) + vx * t, 1e-9);
+      EXPECT_NEAR(run.simulation->Value(v + physics::kY, t), y, 1e-9);
+      EXPECT_NEAR(run.simulation->Value(v + physics::kZ, t),
+                  3 * (i / 20) + 0.5 * t + 0.5 * az * t * t, 1e-9);
+      EXPECT_NEAR(run.simulation->Value(v + physics::kDy, t), vy - 9.81 * t, 1e-12);
+    }
+  }
+}
+
+// A force that depends on time or on the state is not constant: the mode is
+// integrated as usual (and still accurately).
+TEST(BallisticSteps, ForcesThatVaryAreIntegratedNotExtrapolated) {
+  const pipeline::Run run = Simulate(
+      "shape_set ball -desc {-sub {-pos {0 0 0} -sphere 0.2}}\n"
+      "body b -shape ball -mass 1\n"
+      "force -body b -x {cos(t)} -y {-b.y} -z 0\n"
+      "body c -shape ball -mass 1 -init_pos {0 5 0} -init_dpos {0 1 0}\n"
+      "simulator -finish 3 -collisions 0\n");
+  const solver::Counters c = run.simulation->totals();
+  const int b = run.equations->bodies[run.equations->FindBody("b")].first_var;
+  // x'' = cos t from rest: x = 1 − cos t.
+  EXPECT_NEAR(run.simulation->Value(b + physics::kX, 3.0), 1.0 - std::cos(3.0), 1e-6);
+  EXPECT_GT(c.explicit_steps, 10);
+  // c's y axis (no force, constant velocity) is ballistic; b's y (a spring
+  // at its equilibrium) and z, c's x and z, and both rotations do not move
+  // at all (rest steps).
+  EXPECT_EQ(c.ballistic_steps, 1);
+  EXPECT_EQ(c.rest_steps, 6);
+}
+
+}  // namespace
+}  // namespace asgard
