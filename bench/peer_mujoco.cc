@@ -82,6 +82,14 @@ PeerRun Run(const WpScene& s, double h, const std::vector<double>& times, bool r
     while (d->time < tf - 0.5 * h) {
       mj_step(m, d);
       ++out.steps;
+      // An unstable step makes MuJoCo reset the state (and its clock) to the
+      // start: report the failure rather than restart forever.
+      if (d->warning[mjWARN_BADQACC].number > 0) {
+        out.error = "MuJoCo reset the simulation at an unstable step (bad qacc)";
+        mj_deleteData(d);
+        mj_deleteModel(m);
+        return out;
+      }
     }
     std::vector<Pose> row(nb);
     for (int b = 0; b < nb; ++b) {

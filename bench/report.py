@@ -199,7 +199,9 @@ def articulated_section(out, plots, rel):
           "against the rigid model integrated independently of every code measured (absolute "
           "angles, mass matrix factored from the leaves, classical RK4 at a fine fixed step), "
           "cross-checked against MuJoCo RK4 at a small step. The span is short (a released chain "
-          "is chaotic). Asgard's time is its solver phase; the peers' their set-up and steps.", "",
+          "is chaotic). Times are thread CPU seconds: Asgard's solver phase (simulation set-up "
+          "and run; scene evaluation and equation forming excluded), the peers' set-up and "
+          "steps.", "",
           "| scene | bodies | span [s] | size | reference (CPU s) | cross-check | difference |",
           "|---|---|---|---|---|---|---|"]
     for r in refs:
