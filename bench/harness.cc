@@ -33,6 +33,18 @@ double Median(std::vector<double> v) {
   return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
 }
 
+double RepeatedCpu(int repeats, double budget, const std::function<double()>& once, double first,
+                   double* runs) {
+  std::vector<double> cpu{first};
+  double spent = first;
+  while (static_cast<int>(cpu.size()) < repeats && spent < budget) {
+    cpu.push_back(once());
+    spent += cpu.back();
+  }
+  *runs = static_cast<double>(cpu.size());
+  return Median(cpu);
+}
+
 std::vector<double> FrameTimes(double t0, double t1, double rate) {
   std::vector<double> t;
   const long n = std::lround(std::floor((t1 - t0) * rate + 1e-9));

@@ -84,6 +84,12 @@ struct Config {
   double timeout = 120.0;  // per isolated case
 };
 
+// Median CPU time of a case measured `first` seconds on its first run:
+// `once` (which returns CPU seconds) is repeated up to `repeats` runs in all,
+// fewer once `budget` seconds are spent.  `runs` gets the count.
+double RepeatedCpu(int repeats, double budget, const std::function<double()>& once, double first,
+                   double* runs);
+
 // Logs a progress line to stderr.
 void Log(const char* fmt, ...) __attribute__((format(printf, 1, 2)));
 

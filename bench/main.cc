@@ -2,9 +2,9 @@
 //
 //   asgard_bench [--quick] [--out DIR] [--repeats N] [--timeout S] [SUITE...]
 //
-// Suites: workprec stiff fig57 fig511 skip stress contact (default: all).  Each writes
-// CSV files into DIR (default bench-out); bench/report.py turns them into SVG
-// plots and docs/benchmarks.md.
+// Suites: workprec stiff fig57 fig511 skip stress contact articulated (default:
+// all).  Each writes CSV files into DIR (default bench-out); bench/report.py
+// turns them into SVG plots and docs/benchmarks.md.
 #include <sys/stat.h>
 
 #include <cstdlib>
@@ -40,7 +40,8 @@ int main(int argc, char** argv) {
     } else if (a == "-h" || a == "--help") {
       std::printf(
           "usage: asgard_bench [--quick] [--out DIR] [--repeats N] [--timeout S] [SUITE...]\n"
-          "suites: workprec stiff fig57 fig511 skip stress contact (default: all)\n");
+          "suites: workprec stiff fig57 fig511 skip stress contact articulated (default: "
+          "all)\n");
       return 0;
     } else if (!a.empty() && a[0] == '-') {
       Log("unknown option %s", a.c_str());
@@ -66,5 +67,6 @@ int main(int argc, char** argv) {
   if (want("skip")) RunSkip(cfg);
   if (want("stress")) RunStress(cfg);
   if (want("contact")) RunContact(cfg);
+  if (want("articulated")) RunArticulated(cfg);
   return 0;
 }

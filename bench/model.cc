@@ -55,29 +55,6 @@ Pose ZPose(double x, double y, double angle) {
   return p;
 }
 
-// Solves the small dense system A x = b (Gaussian elimination, partial pivoting).
-void SolveSmall(int n, std::vector<double>& A, std::vector<double>& b) {
-  for (int c = 0; c < n; ++c) {
-    int piv = c;
-    for (int r = c + 1; r < n; ++r)
-      if (std::abs(A[r * n + c]) > std::abs(A[piv * n + c])) piv = r;
-    if (piv != c) {
-      for (int k = 0; k < n; ++k) std::swap(A[c * n + k], A[piv * n + k]);
-      std::swap(b[c], b[piv]);
-    }
-    for (int r = c + 1; r < n; ++r) {
-      const double f = A[r * n + c] / A[c * n + c];
-      for (int k = c; k < n; ++k) A[r * n + k] -= f * A[c * n + k];
-      b[r] -= f * b[c];
-    }
-  }
-  for (int r = n - 1; r >= 0; --r) {
-    double s = b[r];
-    for (int k = r + 1; k < n; ++k) s -= A[r * n + k] * b[k];
-    b[r] = s / A[r * n + r];
-  }
-}
-
 }  // namespace
 
 std::string BallShape() { return "shape_set ball -desc {-sub {-pos {0 0 0} -sphere 0.5}}\n"; }
@@ -162,7 +139,75 @@ WpScene TopScene() {
   return s;
 }
 
-WpScene ChainScene(int n) {
+std::array<double, 2> RigidChain::Pivot0(int i) const {
+  std::array<double, 2> p{0.0, 0.0};
+  for (int a = Parent(i); a >= 0; a = Parent(a)) {
+    p[0] += joint[a] * std::sin(theta0[a]);
+    p[1] -= joint[a] * std::cos(theta0[a]);
+  }
+  return p;
+}
+
+double RigidChain::Reach() const {
+  double best = 0.0;
+  for (int i = 0; i < bodies; ++i) {
+    double len = std::max(arm[i], joint[i]);
+    for (int a = Parent(i); a >= 0; a = Parent(a)) len += joint[a];
+    best = std::max(best, len);
+  }
+  return best;
+}
+
+std::string RigidChainText(const RigidChain& c, double t1) {
+  std::ostringstream t;
+  t << BallShape();
+  for (int i = 0; i < c.bodies; ++i) {
+    const auto pv = c.Pivot0(i);
+    const double ux = std::sin(c.theta0[i]), uy = -std::cos(c.theta0[i]);
+    const std::string name = "b" + std::to_string(i);
+    t << "body " << name << " -shape ball -mass " << Real(c.mass[i]) << " -moment "
+      << Vec(c.inertia[i], c.inertia[i], c.inertia[i]) << " -artbody rigid -ct 0 -init_pos "
+      << Vec(pv[0] + c.arm[i] * ux, pv[1] + c.arm[i] * uy, 0) << "\n"
+      << "link -body1 " << name << " -offset1 " << Vec(-c.arm[i] * ux, -c.arm[i] * uy, 0);
+    const int p = c.Parent(i);
+    if (p < 0) {
+      t << " -x " << Real(pv[0]) << " -y " << Real(pv[1]) << " -z 0\n";
+    } else {
+      const double d = c.joint[p] - c.arm[p];
+      t << " -body2 b" << p << " -offset2 "
+        << Vec(d * std::sin(c.theta0[p]), -d * std::cos(c.theta0[p]), 0) << "\n";
+    }
+    t << "force -body " << name << " -x 0 -y " << Real(-c.g) << " -z 0 -gravitational 1\n";
+  }
+  t << "simulator -finish " << Real(t1) << "\n";
+  return t.str();
+}
+
+WpScene TreeScene(int n, double t1) {
+  RigidChain c;
+  c.bodies = n;
+  for (int i = 0; i < n; ++i) {
+    const int p = i == 0 ? -1 : (i - 1) / 2;
+    c.parent.push_back(p);
+    c.mass.push_back(1.0);
+    c.inertia.push_back((1.0 + 0.01) / 12.0);  // a 1 × 0.1 × 0.1 rod about z
+    c.arm.push_back(0.5);
+    c.joint.push_back(1.0);
+    // Spread branches: left children turn one way, right children less the
+    // other way, so no two bodies move alike.
+    c.theta0.push_back(p < 0 ? 1.0 : c.theta0[p] + (i % 2 ? 0.45 : -0.3));
+  }
+  WpScene s;
+  s.name = "tree" + std::to_string(n);
+  s.text = RigidChainText(c, t1);
+  s.t1 = t1;
+  s.size = c.Reach();
+  s.radii.assign(n, 0.5);
+  s.rigid = c;
+  return s;
+}
+
+WpScene ChainScene(int n, double t1) {
   WpScene s;
   s.name = "chain" + std::to_string(n);
   std::ostringstream t;
@@ -178,9 +223,9 @@ WpScene ChainScene(int n) {
     }
     t << "force -body r" << i << " -x 0 -y -9.81 -z 0 -gravitational 1\n";
   }
-  t << "simulator -finish 3\n";  // a released chain is chaotic: 3 s
+  t << "simulator -finish " << Real(t1) << "\n";  // chaotic: keep the span short
   s.text = t.str();
-  s.t1 = 3.0;
+  s.t1 = t1;
   s.size = n;
   s.radii.assign(n, 0.5);
   RigidChain c;
@@ -399,7 +444,8 @@ void TapeOde::Jacobian(double t, const double* y, double* values) const {
   std::vector<double> yp(y, y + n_), f0(n_), f1(n_);
   Rhs(t, y, f0.data());
   for (int c = 0; c < n_; ++c) {
-    const double d = std::sqrt(std::numeric_limits<double>::epsilon()) * std::max(std::abs(y[c]), 1e-3);
+    const double d =
+        std::sqrt(std::numeric_limits<double>::epsilon()) * std::max(std::abs(y[c]), 1e-3);
     yp[c] = y[c] + d;
     Rhs(t, yp.data(), f1.data());
     const double step = yp[c] - y[c];
@@ -431,50 +477,95 @@ std::vector<Pose> TapeOde::Poses(const double* y) const {
 // ---- rigid chain reference -------------------------------------------------
 
 namespace {
-// θ̈ of a planar chain (state: θ then θ̇).
-void ChainAccel(const RigidChain& c, const double* th, const double* om, double* acc) {
-  const int n = c.bodies;
-  auto L = [&](int k, int i) { return i < k ? c.joint[i] : (i == k ? c.arm[i] : 0.0); };
-  std::vector<double> H(n * n, 0.0), M(n * n), r(n, 0.0);
-  for (int i = 0; i < n; ++i)
-    for (int j = 0; j < n; ++j)
-      for (int k = 0; k < n; ++k) H[i * n + j] += c.mass[k] * L(k, i) * L(k, j);
-  for (int i = 0; i < n; ++i) {
-    double gm = 0;
-    for (int k = 0; k < n; ++k) gm += c.mass[k] * L(k, i);
-    r[i] = -c.g * std::sin(th[i]) * gm;
-    for (int j = 0; j < n; ++j) {
-      M[i * n + j] = H[i * n + j] * std::cos(th[i] - th[j]) + (i == j ? c.inertia[i] : 0.0);
-      r[i] -= H[i * n + j] * std::sin(th[i] - th[j]) * om[j] * om[j];
+// A planar chain or tree in absolute angles θ (from the downward vertical).
+// Body k's centre is Σ_i L(k,i) (sin θ_i, −cos θ_i) with L(k,i) = joint[i] for
+// i a strict ancestor of k, arm[k] for i = k, else 0, so Lagrange's equations
+// are  Σ_j (H_ij cos(θ_i − θ_j) + I_i δ_ij) θ̈_j =
+//        −g sin θ_i G_i − Σ_j H_ij sin(θ_i − θ_j) θ̇_j²,
+// H_ij = Σ_k m_k L(k,i) L(k,j) and G_i = Σ_k m_k L(k,i) constant.  H_ij ≠ 0
+// only where one of i, j is an ancestor of the other, so the mass matrix is
+// factored as Lᵀ L from the leaves (Featherstone's LTL), with no fill: a
+// tree costs Σ depth², a chain n³/6.
+class RigidModel {
+ public:
+  explicit RigidModel(const RigidChain& c)
+      : c_(c), n_(c.bodies), anc_(n_), H_(n_ * n_, 0.0), G_(n_, 0.0), M_(n_ * n_), s_(n_), co_(n_) {
+    for (int k = 0; k < n_; ++k)
+      for (int a = c.Parent(k); a >= 0; a = c.Parent(a)) anc_[k].push_back(a);  // nearest first
+    for (int k = 0; k < n_; ++k) {
+      std::vector<std::pair<int, double>> L{{k, c.arm[k]}};
+      for (int a : anc_[k]) L.push_back({a, c.joint[a]});
+      for (auto [i, li] : L) {
+        G_[i] += c.mass[k] * li;
+        for (auto [j, lj] : L) H_[i * n_ + j] += c.mass[k] * li * lj;
+      }
     }
   }
-  SolveSmall(n, M, r);
-  for (int i = 0; i < n; ++i) acc[i] = r[i];
-}
-
-std::vector<Pose> ChainPoses(const RigidChain& c, const double* th) {
-  std::vector<Pose> out;
-  double jx = 0, jy = 0;
-  for (int i = 0; i < c.bodies; ++i) {
-    const double s = std::sin(th[i]), co = -std::cos(th[i]);
-    out.push_back(ZPose(jx + c.arm[i] * s, jy + c.arm[i] * co, th[i] - c.theta0[i]));
-    jx += c.joint[i] * s;
-    jy += c.joint[i] * co;
+  // θ̈ from θ and θ̇.
+  void Accel(const double* th, const double* om, double* acc) {
+    double* M = M_.data();  // row k, column a: a = k or an ancestor of k
+    for (int i = 0; i < n_; ++i) {
+      s_[i] = std::sin(th[i]), co_[i] = std::cos(th[i]);
+      acc[i] = -c_.g * s_[i] * G_[i];
+      M[i * n_ + i] = H_[i * n_ + i] + c_.inertia[i];
+    }
+    for (int i = 0; i < n_; ++i)
+      for (int a : anc_[i]) {
+        const double h = H_[i * n_ + a], sn = s_[i] * co_[a] - co_[i] * s_[a];
+        M[i * n_ + a] = h * (co_[i] * co_[a] + s_[i] * s_[a]);
+        acc[i] -= h * sn * om[a] * om[a];
+        acc[a] += h * sn * om[i] * om[i];
+      }
+    for (int k = n_ - 1; k >= 0; --k) {  // M = Lᵀ L, leaves first
+      const double d = std::sqrt(M[k * n_ + k]);
+      M[k * n_ + k] = d;
+      for (int a : anc_[k]) M[k * n_ + a] /= d;
+      const auto& A = anc_[k];
+      for (size_t p = 0; p < A.size(); ++p)
+        for (size_t q = p; q < A.size(); ++q)
+          M[A[p] * n_ + A[q]] -= M[k * n_ + A[p]] * M[k * n_ + A[q]];
+    }
+    for (int k = n_ - 1; k >= 0; --k) {  // Lᵀ y = b
+      acc[k] /= M[k * n_ + k];
+      for (int a : anc_[k]) acc[a] -= M[k * n_ + a] * acc[k];
+    }
+    for (int k = 0; k < n_; ++k) {  // L x = y
+      for (int a : anc_[k]) acc[k] -= M[k * n_ + a] * acc[a];
+      acc[k] /= M[k * n_ + k];
+    }
   }
-  return out;
-}
+  std::vector<Pose> Poses(const double* th) const {
+    std::vector<Pose> out;
+    std::vector<double> jx(n_), jy(n_);  // joint positions
+    for (int i = 0; i < n_; ++i) {
+      const int p = c_.Parent(i);
+      jx[i] = p < 0 ? 0.0 : jx[p] + c_.joint[p] * std::sin(th[p]);
+      jy[i] = p < 0 ? 0.0 : jy[p] - c_.joint[p] * std::cos(th[p]);
+      out.push_back(ZPose(jx[i] + c_.arm[i] * std::sin(th[i]), jy[i] - c_.arm[i] * std::cos(th[i]),
+                          th[i] - c_.theta0[i]));
+    }
+    return out;
+  }
+
+ private:
+  const RigidChain& c_;
+  int n_;
+  std::vector<std::vector<int>> anc_;  // strict ancestors, nearest first
+  std::vector<double> H_, G_, M_, s_, co_;
+};
 }  // namespace
 
-Trajectory RigidChainReference(const RigidChain& c, const std::vector<double>& times) {
+Trajectory RigidChainReference(const RigidChain& c, const std::vector<double>& times, double h) {
   Trajectory tr;
   tr.times = times;
   const int n = c.bodies;
+  RigidModel model(c);
   if (n == 1) {
     const double leq = (c.inertia[0] + c.mass[0] * c.arm[0] * c.arm[0]) / (c.mass[0] * c.arm[0]);
     const double w = std::sqrt(c.g / leq);
     for (double t : times) {
       const double th = PendulumAngle(c.theta0[0], w, t);
-      tr.poses.push_back(ChainPoses(c, &th));
+      tr.poses.push_back(model.Poses(&th));
     }
     return tr;
   }
@@ -482,9 +573,8 @@ Trajectory RigidChainReference(const RigidChain& c, const std::vector<double>& t
   for (int i = 0; i < n; ++i) y[i] = c.theta0[i];
   auto f = [&](const std::vector<double>& s, std::vector<double>& d) {
     for (int i = 0; i < n; ++i) d[i] = s[n + i];
-    ChainAccel(c, s.data(), s.data() + n, d.data() + n);
+    model.Accel(s.data(), s.data() + n, d.data() + n);
   };
-  const double h = 2e-5;
   double t = times.front();
   for (double tf : times) {
     while (t < tf - 1e-15) {
@@ -499,7 +589,7 @@ Trajectory RigidChainReference(const RigidChain& c, const std::vector<double>& t
       for (int i = 0; i < 2 * n; ++i) y[i] += hh / 6 * (k1[i] + 2 * k2[i] + 2 * k3[i] + k4[i]);
       t += hh;
     }
-    tr.poses.push_back(ChainPoses(c, y.data()));
+    tr.poses.push_back(model.Poses(y.data()));
   }
   return tr;
 }

@@ -2,6 +2,7 @@
 // (for the peer integrators: "the same equations"), and exact references.
 #pragma once
 
+#include <array>
 #include <functional>
 #include <memory>
 #include <optional>
@@ -22,11 +23,20 @@ namespace asgard::bench {
 // model joints as constraints (MuJoCo, Bullet, ODE).  Planar compound
 // pendulums: body i is a ball (mass, I_cm) whose centre hangs `arm[i]` below
 // its joint; joint i+1 sits `joint[i]` below joint i on body i.  Angles from
-// the downward vertical, released at rest at `theta0`.
+// the downward vertical, released at rest at `theta0`.  A tree: `parent[i]`
+// is the body whose joint point (`joint[parent]` below its own joint) body i
+// hangs from, or −1 for the fixed pivot at the origin; parents come before
+// their children.  An empty `parent` is a chain (parent i − 1).
 struct RigidChain {
   int bodies = 0;
   std::vector<double> mass, inertia, arm, joint, theta0;
+  std::vector<int> parent;
   double g = 9.81;
+  int Parent(int i) const { return parent.empty() ? i - 1 : parent[i]; }
+  // Joint i's position (x, y) at t = 0.
+  std::array<double, 2> Pivot0(int i) const;
+  // Length of the longest path from the pivot (the scene size).
+  double Reach() const;
 };
 
 struct WpScene {
@@ -49,7 +59,14 @@ struct WpScene {
 WpScene SimplePendulumScene();
 WpScene DoublePendulumScene();
 WpScene TopScene();
-WpScene ChainScene(int n);
+WpScene ChainScene(int n, double t1 = 3.0);
+// A planar binary tree of n rods (each a unit-length rod of mass 1 hinged at
+// its parent's end; body i's parent is (i − 1) / 2), released at rest from
+// spread angles.  Asgard's text is written from the rigid model.
+WpScene TreeScene(int n, double t1);
+// Asgard scene text of a rigid planar model: balls with the model's moments,
+// joined by exact links at the joints, under gravity, until t1.
+std::string RigidChainText(const RigidChain& c, double t1);
 WpScene StiffLinkScene(double k);
 WpScene BallsInBoxScene(int n);
 
@@ -121,9 +138,11 @@ class TapeOde {
 // Exact references.
 // Physical pendulum released at rest at theta0: θ(t) = 2 asin(k sn(K − ω t, k)).
 double PendulumAngle(double theta0, double omega, double t);
-// Rigid planar chain integrated with classical RK4 at a fine fixed step
-// (an independent code and model; used for the engines).
-Trajectory RigidChainReference(const RigidChain& c, const std::vector<double>& times);
+// Rigid planar chain or tree integrated with classical RK4 at a fine fixed
+// step h in absolute angles (an independent code and model; used for the
+// engines).
+Trajectory RigidChainReference(const RigidChain& c, const std::vector<double>& times,
+                               double h = 2e-5);
 // Hard spheres in a box, event-driven and exact (no gravity).
 struct HardSpheres {
   double box = 10.0;  // cube [−box/2, box/2]³ (inner faces)

@@ -44,20 +44,19 @@ PeerRun Run(const WpScene& s, double h, const std::vector<double>& times) {
   };
   if (s.rigid) {
     const RigidChain& c = *s.rigid;
-    btVector3 joint(0, 0, 0);
     for (int i = 0; i < c.bodies; ++i) {
+      const auto pv = c.Pivot0(i);
       const btVector3 u(std::sin(c.theta0[i]), -std::cos(c.theta0[i]), 0);
       btRigidBody* b = make(c.mass[i], btVector3(c.inertia[i], c.inertia[i], c.inertia[i]),
-                            joint + c.arm[i] * u);
-      if (i == 0) {
+                            btVector3(pv[0], pv[1], 0) + c.arm[i] * u);
+      if (const int p = c.Parent(i); p < 0) {
         joints.push_back(std::make_unique<btPoint2PointConstraint>(*b, -c.arm[i] * u));
       } else {
-        const btVector3 up(std::sin(c.theta0[i - 1]), -std::cos(c.theta0[i - 1]), 0);
+        const btVector3 up(std::sin(c.theta0[p]), -std::cos(c.theta0[p]), 0);
         joints.push_back(std::make_unique<btPoint2PointConstraint>(
-            *bodies[i - 1], *b, (c.joint[i - 1] - c.arm[i - 1]) * up, -c.arm[i] * u));
+            *bodies[p], *b, (c.joint[p] - c.arm[p]) * up, -c.arm[i] * u));
       }
       world.addConstraint(joints.back().get(), true);
-      joint += c.joint[i] * u;
     }
   } else if (s.top) {
     const auto& t = *s.top;

@@ -1,5 +1,5 @@
-// ODE 0.16 (double precision) on the same scenes: planar pendulum chains with
-// hinge joints (dWorldStep, the direct LCP solver), the top as a free body
+// ODE 0.16 (double precision) on the same scenes: planar pendulum chains and
+// trees with hinge joints (dWorldStep, the direct LCP solver), the top as a free body
 // (gyroscopic mode on).  Fixed steps.
 #include <ode/ode.h>
 
@@ -37,17 +37,16 @@ PeerRun Run(const WpScene& s, double h, const std::vector<double>& times) {
   };
   if (s.rigid) {
     const RigidChain& c = *s.rigid;
-    double jx = 0, jy = 0;
     for (int i = 0; i < c.bodies; ++i) {
+      const auto pv = c.Pivot0(i);
       const double ux = std::sin(c.theta0[i]), uy = -std::cos(c.theta0[i]);
-      dBodyID b = make(c.mass[i], c.inertia[i], c.inertia[i], c.inertia[i], jx + c.arm[i] * ux,
-                       jy + c.arm[i] * uy);
+      dBodyID b = make(c.mass[i], c.inertia[i], c.inertia[i], c.inertia[i], pv[0] + c.arm[i] * ux,
+                       pv[1] + c.arm[i] * uy);
       dJointID j = dJointCreateHinge(world, nullptr);
-      dJointAttach(j, b, i == 0 ? nullptr : bodies[i - 1]);
-      dJointSetHingeAnchor(j, jx, jy, 0);
+      const int p = c.Parent(i);
+      dJointAttach(j, b, p < 0 ? nullptr : bodies[p]);
+      dJointSetHingeAnchor(j, pv[0], pv[1], 0);
       dJointSetHingeAxis(j, 0, 0, 1);
-      jx += c.joint[i] * ux;
-      jy += c.joint[i] * uy;
     }
   } else if (s.top) {
     const auto& t = *s.top;

@@ -19,5 +19,9 @@ void RunSkip(const Config& cfg);
 void RunStress(const Config& cfg);
 // Contact: piles of cubes and balls in a box, Asgard against Bullet.  contact.csv
 void RunContact(const Config& cfg);
+// Articulated bodies: a chain of 50 and a tree of 100 linked rods against
+// MuJoCo and Bullet, chains of 10 … 50 for the cost per step per body.
+//   articulated.csv, articulated_refs.csv
+void RunArticulated(const Config& cfg);
 
 }  // namespace asgard::bench

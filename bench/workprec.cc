@@ -55,14 +55,7 @@ Point Decode(const std::vector<double>& v) {
 // when a run is long (at most ~60 s in all); returns the median.
 double MedianCpu(const Config& cfg, const std::function<double()>& once, double first,
                  double* runs) {
-  std::vector<double> cpu{first};
-  double spent = first;
-  while (static_cast<int>(cpu.size()) < cfg.repeats && spent < (cfg.quick ? 5.0 : 15.0)) {
-    cpu.push_back(once());
-    spent += cpu.back();
-  }
-  *runs = static_cast<double>(cpu.size());
-  return Median(cpu);
+  return RepeatedCpu(cfg.repeats, cfg.quick ? 5.0 : 15.0, once, first, runs);
 }
 
 void Emit(Csv& csv, const std::string& scene, const std::string& code, const std::string& kind,
