@@ -601,10 +601,11 @@ def main():
                "phase pairs, narrow-phase (time-of-impact) queries, distance queries, impacts.", "",
                "| scene | bodies | t1 [s] | code | status | CPU [s] | × Bullet | penetration | final KE | energy drift | impacts | windows | pairs | TOI queries | distance queries |",
                "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|"]
-        bullet = {r["scene"]: num(r["cpu_s"]) for r in cs if r["code"].startswith("bullet")}
+        bullet = {(r["scene"], r["t1"]): num(r["cpu_s"]) for r in cs
+                  if r["code"].startswith("bullet")}
         for r in cs:
             ratio = ""
-            b = bullet.get(r["scene"])
+            b = bullet.get((r["scene"], r["t1"]))
             if r["code"] == "asgard" and b and num(r["cpu_s"]) is not None:
                 ratio = fmt(num(r["cpu_s"]) / b)
             st_ = r["status"] if r["status"] == "ok" else f"**{r['status']}** {r['error']}"
@@ -614,6 +615,43 @@ def main():
                       f"{r['impacts']} | {r['windows']} | {r['broad_pairs']} | "
                       f"{r['narrow_queries']} | {r['distance_queries']} |")
         md.append("")
+        # Growth of the counters with body count: the balls scenes of one span
+        # (bench/contact.cc, kGrowthSpan), Asgard's rows.
+        growth = sorted((r for r in cs if r["code"] == "asgard" and r["status"] == "ok" and
+                         r["scene"].startswith("balls") and num(r["t1"]) == 10),
+                        key=lambda r: num(r["bodies"]))
+        if growth:
+            counters = [("windows", "windows"), ("broad_pairs", "pairs"),
+                        ("narrow_queries", "TOI queries"), ("distance_queries", "distance queries"),
+                        ("impacts", "impacts")]
+            p = Plot("Collision counters against body count (balls in a box, 10 s)", "bodies",
+                     "count over the run")
+            for key, label in counters:
+                p.add(label, [(num(r["bodies"]), num(r[key])) for r in growth])
+            p.add("CPU [s] × 1000", [(num(r["bodies"]), num(r["cpu_s"]) * 1000) for r in growth],
+                  dashed=True)
+            counts = " → ".join(r["bodies"] for r in growth)
+            md += ["### Counter growth with body count", "",
+                   f"Balls in the box for 10 s, {counts} balls (the quick run stops at 100; "
+                   "1000 is in the full run only). Counts over the whole run; the last columns "
+                   "divide by the row above (×10 bodies each).", ""]
+            if p.save(os.path.join(plots, "contact_growth.svg")):
+                md += [f"![contact growth]({rel}/contact_growth.svg)", ""]
+            md += ["| bodies | CPU [s] | windows | pairs | TOI queries | distance queries | impacts "
+                   "| × pairs | × TOI | × distance | × impacts | × CPU |",
+                   "|---|---|---|---|---|---|---|---|---|---|---|---|"]
+            prev = None
+            for r in growth:
+                def grow(key):
+                    if prev is None or not num(prev[key]):
+                        return ""
+                    return fmt(num(r[key]) / num(prev[key]))
+                md.append(f"| {r['bodies']} | {fmt(num(r['cpu_s']))} | {r['windows']} | "
+                          f"{r['broad_pairs']} | {r['narrow_queries']} | {r['distance_queries']} | "
+                          f"{r['impacts']} | {grow('broad_pairs')} | {grow('narrow_queries')} | "
+                          f"{grow('distance_queries')} | {grow('impacts')} | {grow('cpu_s')} |")
+                prev = r
+            md.append("")
 
     md += articulated_section(out, plots, rel)
 

@@ -6,12 +6,25 @@
 // the contact plane, accumulated over sweeps (Catto's sequential impulses).
 // One sweep visits the contacts in order; per contact:
 //   normal:   Δλ = (target − u·n) / (nᵀK n),  λ_n ← max(0, λ_n + Δλ)
-//   friction: Δλ_t = −K_t⁻¹ u_t (2×2 tangential block), λ_t ← λ_t + Δλ_t
-//             projected on the disc |λ_t| ≤ μ λ_n
+//   friction: sticking  λ_t + Δλ_t with Δλ_t = −K_t⁻¹ u_t (2×2 tangential
+//             block), when that lies in the disc |λ_t| ≤ μ λ_n;
+//             sliding   otherwise λ_t − u_t / k_t (k_t ≥ the largest
+//             eigenvalue of K_t) projected on the disc
 // where u is the relative velocity at the point (b − a) and K the contact's
 // inverse effective mass (impulse.cc).  A contact inside the disc sticks
 // (static friction: its tangential velocity is cancelled); on the rim it
-// slides with the kinetic force μ λ_n opposing the slip.  Clamping the
+// slides with the kinetic force μ λ_n opposing the slip.
+//
+// Why the sliding step is not the projected sticking impulse: K_t at a
+// point off the centre of mass is anisotropic (a unit cube's corner: its
+// eigenvalues are 2.5 and 5.5 per unit mass), so −K_t⁻¹ u_t points up to
+// ~20° away from −u_t, and scaling it onto the rim gives a friction force
+// that is not opposite to the slip — a box sliding on its four corners lost
+// 6% of μ λ_n along the slope and drifted sideways.  The isotropic step's
+// fixed point on the rim is λ_t = −μ λ_n u_t/|u_t| with u_t the slip after
+// the impulse (maximal dissipation, Coulomb's kinetic law); with
+// k_t ≥ λ_max(K_t) each step is a projected gradient step on the contact's
+// kinetic energy and cannot overshoot.  Clamping the
 // accumulated impulse, not the increment, lets contacts that were pushed too
 // hard early in a sweep give impulse back later.  Stops when no impulse
 // changes by more than `tolerance` in a sweep.
@@ -34,6 +47,7 @@ struct Row {
   Eigen::Vector3d ra, rb, n, t1, t2;
   double inv_kn = 0.0;
   Eigen::Matrix2d inv_kt = Eigen::Matrix2d::Zero();
+  double kt_max = 0.0;  // largest eigenvalue of K_t
   Eigen::Vector2d lambda_t = Eigen::Vector2d::Zero();
 };
 
@@ -81,7 +95,11 @@ int SolveContacts(std::vector<BodyState>& bodies, std::vector<SolverContact>& co
     kt << Coupling(a, b, row, row.t1, row.t1), Coupling(a, b, row, row.t2, row.t1),
         Coupling(a, b, row, row.t1, row.t2), Coupling(a, b, row, row.t2, row.t2);
     const double det = kt.determinant();
-    if (det > 0.0 && kt(0, 0) > 0.0) row.inv_kt = kt.inverse();
+    if (det > 0.0 && kt(0, 0) > 0.0) {
+      row.inv_kt = kt.inverse();
+      const double half_trace = 0.5 * kt.trace();
+      row.kt_max = half_trace + std::sqrt(std::max(0.0, half_trace * half_trace - det));
+    }
     c.normal_impulse = 0.0;
   }
   int sweep = 0;
@@ -105,10 +123,14 @@ int SolveContacts(std::vector<BodyState>& bodies, std::vector<SolverContact>& co
         u = VelocityAt(b, row.rb) - VelocityAt(a, row.ra);
         const Eigen::Vector2d ut(u.dot(row.t1), u.dot(row.t2));
         const Eigen::Vector2d old_t = row.lambda_t;
-        Eigen::Vector2d next = old_t - row.inv_kt * ut;
         const double limit = c.friction * c.normal_impulse;
-        const double length = next.norm();
-        if (length > limit) next *= limit / length;
+        Eigen::Vector2d next = old_t - row.inv_kt * ut;  // sticking
+        if (next.norm() > limit) {
+          // Sliding: kinetic friction opposes the slip (see the design note).
+          next = old_t - ut / row.kt_max;
+          const double length = next.norm();
+          if (length > limit) next *= limit / length;
+        }
         row.lambda_t = next;
         const Eigen::Vector2d d = next - old_t;
         const Eigen::Vector3d pt = d.x() * row.t1 + d.y() * row.t2;

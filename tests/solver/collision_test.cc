@@ -4,6 +4,8 @@
 
 #include <cmath>
 #include <fstream>
+#include <limits>
+#include <numbers>
 #include <sstream>
 
 #include "core/collide/collide.h"
@@ -487,19 +489,28 @@ TEST(Contact, ABoxOnAnInclineSlidesWhenFrictionIsBelowTheSlopeAndSticksOtherwise
   }
 }
 
-// Known gap (issue 14): the sliding distance comes out 3.6% (μ = 0.2) and
-// 7.5% (μ = 0.3) longer than ½ g (sin θ − μ cos θ) t², an effective friction
-// about 6% below μ; the hop model's derivation says the error should be
-// below g Δ t (0.6%).  Disabled until the missing friction is found.
-TEST(Contact, DISABLED_ABoxSlidingDownAnInclineCoversTheAnalyticDistance) {
+// Sliding on its four corners, the box must feel the whole kinetic friction
+// μ m g cosθ opposite to its slip.  The hop model holds the average normal
+// force exactly and applies the friction impulse once per hop of at most one
+// window Δ = t1/1024, so the distance is off by at most the slip the last
+// hop's friction has not yet taken, g Δ t1 (0.6%); it is measured at 2e-6.
+// By the scene's mirror symmetry in z, the box slides straight down the
+// slope without turning.  (Friction was once 6% short here: the solver
+// projected the anisotropic sticking impulse K_t⁻¹ u_t onto the friction
+// disc, which at a corner points 20° away from the slip.)
+TEST(Contact, ABoxSlidingDownAnInclineCoversTheAnalyticDistance) {
   const double theta = 0.5, g = 9.81, t1 = 1.0;
   const Eigen::Vector3d down(-std::cos(theta), -std::sin(theta), 0.0);
   const double window = t1 / 1024;
   for (double mu : {0.2, 0.3}) {
     const SceneRun run = SimulateOk(Incline(theta, mu, t1), 1e-6, 1e-9);
-    const double moved = (Position(run, "box", t1) - Position(run, "box", 0)).dot(down);
+    const Eigen::Vector3d moved = Position(run, "box", t1) - Position(run, "box", 0);
     const double expected = 0.5 * g * (std::sin(theta) - mu * std::cos(theta)) * t1 * t1;
-    EXPECT_NEAR(moved, expected, g * window * t1) << "mu " << mu;
+    EXPECT_NEAR(moved.dot(down), expected, g * window * t1) << "mu " << mu;
+    // Straight: no drift across the slope (rounding only, amplified over
+    // the ~1000 hops: far below the landing gap's 1e-8 of the size).
+    EXPECT_NEAR(moved.z(), 0.0, 1e-8) << "mu " << mu;
+    EXPECT_LT(Spin(run, "box", t1).norm(), 1e-8) << "mu " << mu;
   }
 }
 
@@ -535,6 +546,194 @@ TEST(Contact, ACubeOverTheEdgeOfATableTipsOffAndOneOnItStays) {
   EXPECT_NEAR(Position(on, "box", 3).x(), -0.3, 1e-3);
   EXPECT_LT(TurnAngle(on, "box", 3), 1e-3);
   EXPECT_LT(KineticEnergy(on, on.equations->FindBody("box"), 3), 1e-12);
+}
+
+// Newton's cradle: five equal balls of restitution 1 in a row, the last four
+// touching (centres exactly 2r apart).  The event-driven model answers the
+// touching pairs one after another at one instant, each an elastic exchange
+// of equal masses along the line of centres: j = −(1 + e) u_n / (nᵀ K n)
+// with K = 2/m (the lever arms r × n vanish on the line), so the impulse is
+// exactly m v and the velocity passes down the row — the last ball leaves
+// at the first's speed, the others stop, up to the rounding of four
+// exchanges (a few ulps of v).  Momentum and energy are those of the first
+// ball alone.
+constexpr double kEpsilon = std::numeric_limits<double>::epsilon();
+
+void ExpectCradle(double gap) {
+  const double v = 1.5, r = 0.5, t1 = 3.0;
+  std::ostringstream text;
+  text.precision(17);
+  text << Sphere(r);
+  for (int i = 0; i < 5; ++i)
+    text << "body b" << i << " -shape ball -mass 1 -restitution 1 -init_pos {"
+         << (i == 0 ? -gap : 2 * r * i) << " 0 0} -init_dpos {" << (i == 0 ? v : 0.0) << " 0 0}\n";
+  text << "simulator -finish " << t1 << "\n";
+  const SceneRun run = SimulateOk(text.str());
+  // One exchange per touching pair, all at the instant the first arrives.
+  ASSERT_EQ(run.collisions->impacts().size(), 4u) << "gap " << gap;
+  const double hit = gap / v;
+  for (const auto& imp : run.collisions->impacts()) {
+    EXPECT_EQ(imp.t, run.collisions->impacts()[0].t) << "gap " << gap;
+    // Landing up to one separation early (it is at most 1e-8 r + atol).
+    EXPECT_NEAR(imp.t, hit, 2 * run.collisions->separation() / v) << "gap " << gap;
+  }
+  double momentum = 0.0, energy = 0.0;
+  for (int i = 0; i < 5; ++i) {
+    const Eigen::Vector3d vi = Velocity(run, "b" + std::to_string(i), t1);
+    EXPECT_NEAR(vi.x(), i == 4 ? v : 0.0, 8 * kEpsilon * v) << "gap " << gap << ", ball " << i;
+    EXPECT_EQ(vi.y(), 0.0);
+    EXPECT_EQ(vi.z(), 0.0);
+    momentum += vi.x();
+    energy += 0.5 * vi.squaredNorm();
+  }
+  EXPECT_NEAR(momentum, v, 8 * kEpsilon * v) << "gap " << gap;
+  EXPECT_NEAR(energy, 0.5 * v * v, 16 * kEpsilon * v * v) << "gap " << gap;
+  // The last ball flies from where it stood since the impact.
+  EXPECT_NEAR(Position(run, "b4", t1).x(), 8 * r + v * (t1 - hit),
+              2 * run.collisions->separation() + 1e-9)
+      << "gap " << gap;
+}
+
+TEST(Contact, NewtonsCradleOfFiveTouchingBallsSendsTheLastOffAtTheFirstsSpeed) {
+  ExpectCradle(1.0);
+}
+
+// Known gap (core/solver): all five touching at the start, the first already
+// moving, the first impact is at t0.  The velocity jump the monitor writes
+// there (Simulation::SetValueAt at t0) is never applied — the component's
+// only sample at t0 is already a restart sample, so no restart picks the
+// jump up — and the monitor finds the same impact again until it gives up
+// after 1000 ("do not resolve at t=0").  Two touching balls, one moving,
+// show it too; a gap of 1e-6 (impact just after t0) does not.
+TEST(Contact, DISABLED_NewtonsCradleWhoseFirstImpactIsAtTheStart) { ExpectCradle(0.0); }
+
+// A unit cube balanced on an edge, turned π/4 + tilt about z so that its
+// centre of mass is off the edge by (√2/2) tilt: gravity tips it about the
+// edge to the side of the centre (−x for a positive tilt), and it ends at
+// rest on a face, its centre half a side above the floor.
+std::string EdgeBalance(double tilt) {
+  const double angle = std::numbers::pi / 4 + tilt;
+  // The lowest corner's depth below the centre, plus a lift of 1e-5.
+  const double depth = 0.5 * (std::sin(angle) + std::cos(angle)) + 1e-5;
+  std::ostringstream text;
+  text.precision(17);
+  text << "shape_set cube -desc {-sub {-box {1 1 1}}}\n"
+       << "shape_set floor -desc {-sub {-box {20 1 20}}}\n"
+       << "body floor -shape floor -static 1 -init_pos {0 -0.5 0} -friction 0.6\n"
+       << "body box -shape cube -mass 1 -init_rot {0 0 " << angle << "} -init_pos {0 " << depth
+       << " 0} -friction 0.6 -restitution 0.2\n"
+       << "force -body box -y {-9.81 * box.mass} -gravitational 1\n"
+       << "simulator -finish 3\n";
+  return text.str();
+}
+
+// Where it ends: the centre's x; checks the rest of the final state.
+double ExpectTipsOntoAFace(double tilt) {
+  const SceneRun run = SimulateOk(EdgeBalance(tilt), 1e-6, 1e-9);
+  const Eigen::Vector3d end = Position(run, "box", 3.0);
+  EXPECT_NEAR(end.y(), 0.5, 0.005) << "tilt " << tilt;
+  // Pivoting about the edge moves the centre half a side to the side of
+  // the tilt (less whatever the edge slid): at least a quarter side.
+  EXPECT_LT(tilt > 0 ? end.x() : -end.x(), -0.25) << "tilt " << tilt;
+  // On a face: turned by a multiple of π/2 about z (π/2 for a positive
+  // tilt, 0 for a negative one), nothing about the other axes.
+  const auto f =
+      pipeline::SampleBody(*run.equations, *run.simulation, run.equations->FindBody("box"), 3.0);
+  const Eigen::Matrix3d R =
+      Eigen::Quaterniond(f.q[0], f.q[1], f.q[2], f.q[3]).normalized().toRotationMatrix();
+  EXPECT_NEAR(std::atan2(R(1, 0), R(0, 0)), tilt > 0 ? std::numbers::pi / 2 : 0.0, 0.01)
+      << "tilt " << tilt;
+  EXPECT_NEAR(R(2, 2), 1.0, 1e-6) << "tilt " << tilt;
+  EXPECT_LT(KineticEnergy(run, run.equations->FindBody("box"), 3.0), 1e-12) << "tilt " << tilt;
+  ExpectNoDeepOverlapAtAnyFrame(run, 3.0);
+  return end.x();
+}
+
+TEST(Contact, ACubeBalancedOnAnEdgeTipsToTheSideOfItsTiltAndRestsOnAFace) {
+  const double right = ExpectTipsOntoAFace(-0.1), left = ExpectTipsOntoAFace(0.1);
+  // Mirror images of one another (x → −x), up to the solver's tolerance
+  // over the fall (1e-6 relative of a unit-size motion).
+  EXPECT_NEAR(left, -right, 1e-5);
+}
+
+// Known gap (core/solver, CollisionMonitor::RespondResting): with a tilt of
+// 0.02 the centre is 0.014 off the edge and the cube starts to turn at
+// α = m g d / I_edge = 0.21 rad/s².  Its speeds after each resting solve
+// stay below the sleep test's "slow" limit |a| Δ (0.029 m/s for Δ = 3 ms)
+// for the twelve events it takes to fall asleep, so it sleeps balanced on
+// its edge although its spin grew at every event.  A body at rest bounces
+// along the normal only; its spin should be held to round-off (or not grow
+// from one event to the next) before it may sleep.
+TEST(Contact, DISABLED_ACubeBalancedOnAnEdgeWithATinyTiltStillTips) {
+  const double right = ExpectTipsOntoAFace(-0.02), left = ExpectTipsOntoAFace(0.02);
+  EXPECT_NEAR(left, -right, 1e-5);
+}
+
+// A row of 20 dominoes (0.2 × 1 × 0.5, 0.8 apart: a gap of 0.6 between
+// faces) standing on a floor; the first starts tilted 0.35 rad about its
+// front edge, past its balance angle atan(0.1/0.5) = 0.197.  Each is first
+// struck by its predecessor after that one was struck, and all end down: a
+// domino leaning on its fallen successor is turned at least as far as when
+// its top first reached that successor standing, asin(gap / height) = 0.64;
+// the last lies flat, its centre half a thickness above the floor.
+std::string Dominoes(int n, double pitch, double tilt, double t1) {
+  std::ostringstream text;
+  text.precision(17);
+  text << "shape_set domino -desc {-sub {-box {0.2 1 0.5}}}\n"
+       << "shape_set floor -desc {-sub {-box {" << 2 * n * pitch + 4 << " 1 10}}}\n"
+       << "body floor -shape floor -static 1 -init_pos {" << n * pitch / 2
+       << " -0.5 0} -friction 0.6\n";
+  for (int i = 0; i < n; ++i) {
+    // The first turned by −tilt about z, its front bottom edge (0.1, −0.5)
+    // kept at x = 0.1, 1e-5 above the floor; the others upright.
+    const double x = i == 0 ? 0.1 - 0.1 * std::cos(tilt) + 0.5 * std::sin(tilt) : i * pitch;
+    const double y = i == 0 ? 0.1 * std::sin(tilt) + 0.5 * std::cos(tilt) : 0.5;
+    text << "body d" << i << " -shape domino -mass 1 -init_rot {0 0 " << (i == 0 ? -tilt : 0.0)
+         << "} -init_pos {" << x << " " << y + 1e-5 << " 0} -friction 0.6 -restitution 0.3\n"
+         << "force -body d" << i << " -y {-9.81 * d" << i << ".mass} -gravitational 1\n";
+  }
+  text << "simulator -finish " << t1 << "\n";
+  return text.str();
+}
+
+// Known gap (core/solver, CollisionMonitor::RespondResting): the chain stops
+// at the third domino.  Standing dominoes fall asleep after their first
+// dozen hops, and a domino that reaches a sleeping one slowly (a resting
+// event, not an impact) meets it as an immovable wall — sleeping bodies end
+// an island instead of waking; the leaning pair then sleeps too.  With the
+// island waking what it touches and the sleep test holding spin to
+// round-off, the row topples in order (one domino every 0.36 s) but the
+// leaning dominoes never sleep and 8 s of motion cost minutes.
+TEST(Contact, DISABLED_ARowOfTwentyDominoesTopplesInOrderAndAllEndDown) {
+  const int n = 20;
+  const double pitch = 0.8, t1 = 8.0;
+  const SceneRun run = SimulateOk(Dominoes(n, pitch, 0.35, t1), 1e-6, 1e-9);
+  const auto& eq = *run.equations;
+  double last = 0.0;
+  for (int i = 0; i < n; ++i) {
+    const int b = eq.FindBody("d" + std::to_string(i));
+    if (i > 0) {
+      // The first event between the domino and its predecessor.
+      const int before = eq.FindBody("d" + std::to_string(i - 1));
+      double struck = -1.0;
+      for (const auto& imp : run.collisions->impacts())
+        if (std::minmax(imp.a, imp.b) == std::minmax(before, b)) {
+          struck = imp.t;
+          break;
+        }
+      EXPECT_GT(struck, last) << "domino " << i;
+      last = struck;
+    }
+    const auto f = pipeline::SampleBody(eq, *run.simulation, b, t1);
+    const Eigen::Matrix3d R =
+        Eigen::Quaterniond(f.q[0], f.q[1], f.q[2], f.q[3]).normalized().toRotationMatrix();
+    const double turned = std::acos(std::clamp(R(1, 1), -1.0, 1.0));
+    EXPECT_GT(turned, std::asin((pitch - 0.2) / 1.0)) << "domino " << i;
+    if (i == n - 1) {
+      EXPECT_NEAR(f.p[1], 0.1, 0.001) << "the last domino";
+    }
+  }
+  ExpectNoDeepOverlapAtAnyFrame(run, t1);
 }
 
 }  // namespace
