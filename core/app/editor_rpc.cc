@@ -1,6 +1,7 @@
 // The editor's asgard-core methods (see editor_rpc.h).
 #include "core/app/editor_rpc.h"
 
+#include <algorithm>
 #include <cmath>
 
 #include "core/physics/trajectory.h"
@@ -150,19 +151,24 @@ json Views(const render::SceneSampler& sampler, const session::Session& session,
   return views;
 }
 
+// [x y z qx qy qz qw] of every body at time t, one list.
+json PoseFrame(const render::SceneSampler& sampler, double t) {
+  json frame = json::array();
+  for (const auto& pose : sampler.Poses(t)) {
+    const Eigen::Quaterniond q = pose.q.normalized();
+    for (double v : {pose.p.x(), pose.p.y(), pose.p.z(), q.x(), q.y(), q.z(), q.w()})
+      frame.push_back(Round(v));
+  }
+  return frame;
+}
+
 json Poses(const render::SceneSampler& sampler, const session::Session* session) {
   const std::vector<double> times = sampler.FrameTimes();
   json names = json::array();
   for (const auto& b : sampler.bodies()) names.push_back(b.name);
   json frames = json::array(), forces = json::array();
   for (double t : times) {
-    json frame = json::array();
-    for (const auto& pose : sampler.Poses(t)) {
-      const Eigen::Quaterniond q = pose.q.normalized();
-      for (double v : {pose.p.x(), pose.p.y(), pose.p.z(), q.x(), q.y(), q.z(), q.w()})
-        frame.push_back(Round(v));
-    }
-    frames.push_back(std::move(frame));
+    frames.push_back(PoseFrame(sampler, t));
     json values = json::array();
     for (const auto& f : sampler.ForceValues(t)) values.push_back(f ? Vec(*f) : json());
     forces.push_back(std::move(values));
@@ -214,6 +220,25 @@ std::optional<json> Dispatch(const std::string& method, const json& /*params*/,
   if (method == "poses")
     return sampler ? Poses(*sampler, session) : Refused("the scene has not been simulated");
   return std::nullopt;
+}
+
+json PlayerData(const render::SceneSampler& sampler, const render::ViewState& view, double rate) {
+  json data = Meshes(sampler);
+  const double t0 = sampler.t0(), t1 = std::max(sampler.t0(), sampler.t1());
+  rate = std::isfinite(rate) && rate > 0 ? rate : sampler.frame_rate();
+  const int count = static_cast<int>(
+      std::clamp(std::floor((t1 - t0) * rate + 1e-9) + 1, 1.0, double{kMaxPlayerFrames}));
+  const std::vector<double> times = render::SceneSampler::FrameTimes(t0, t1, count);
+  json frames = json::array();
+  for (double t : times) frames.push_back(PoseFrame(sampler, t));
+  const render::Camera c = render::MakeCamera(view, 1, 1);
+  data["times"] = times;
+  data["poses"] = std::move(frames);
+  data["camera"] = {{"eye", Vec(c.eye)},
+                    {"target", Vec(c.target)},
+                    {"up", Vec(c.up)},
+                    {"tan_half_fov", std::tan(c.fov_y / 2)}};
+  return data;
 }
 
 }  // namespace asgard::editor_rpc

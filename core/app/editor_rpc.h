@@ -23,6 +23,12 @@
 //
 // meshes and poses need a successful simulate; before it they answer
 // {ok: false, error}.
+//
+// PlayerData is what an exported page needs to play the motion in WebGL
+// (the medium's "player" command, host-shim/html.cc): meshes' bodies and
+// lights as above, the poses at `rate` frames per second over the run (at
+// most kMaxPlayerFrames), and the camera `view` gives for a square picture
+// {eye, target, up, tan_half_fov}.
 #pragma once
 
 #include <nlohmann/json.hpp>
@@ -35,7 +41,8 @@ class Session;
 }
 namespace render {
 class SceneSampler;
-}
+struct ViewState;
+}  // namespace render
 }  // namespace asgard
 
 namespace asgard::editor_rpc {
@@ -45,5 +52,9 @@ namespace asgard::editor_rpc {
 std::optional<nlohmann::json> Dispatch(const std::string& method, const nlohmann::json& params,
                                        const session::Session* session,
                                        const render::SceneSampler* sampler);
+
+inline constexpr int kMaxPlayerFrames = 3000;
+nlohmann::json PlayerData(const render::SceneSampler& sampler, const render::ViewState& view,
+                          double rate);
 
 }  // namespace asgard::editor_rpc
