@@ -362,6 +362,7 @@ json Hub::Handle(const std::string& method, const json& params,
     json r = Call(method, {{key, arg}});
     json out = after_text_change(json::array());
     out["edits"] = r["edits"];
+    if (method == "delete") out["removed"] = r.value("removed", json::array());
     return out;
   }
   if (method == "update") {

@@ -102,6 +102,8 @@ struct EditResult {
   bool ok = false;
   std::string error;
   std::vector<TextEdit> edits;
+  // DeleteElement: the other elements removed with it (their keys).
+  std::vector<std::string> removed;
 };
 
 class Session {
@@ -122,7 +124,10 @@ class Session {
   EditResult SetParameter(const std::string& element, const std::string& param,
                           const std::vector<double>& values);
   // Inserts a well-formatted command after the last command of its kind (or
-  // at the end), or deletes an element's command.
+  // at the end), or deletes an element's command.  Deleting a body also
+  // deletes the forces, torques, links, trajectories and views that name it
+  // (and a trajectory the links and views along it), all as one undo step;
+  // it is refused when one of them cannot be deleted (made in a loop ...).
   EditResult CreateElement(const std::string& command);
   EditResult DeleteElement(const std::string& element);
   std::vector<Parameter> Parameters() const;

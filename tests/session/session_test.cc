@@ -4,6 +4,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cstring>
 #include <map>
 #include <set>
@@ -438,6 +439,59 @@ TEST(CreateDelete, CommandsAreInsertedAfterTheirKindAndRemovedWithTheirLine) {
                           "force -body a -x 1 -y 0 -z 0\n"
                           "simulator -finish 1\n");
   EXPECT_FALSE(s.DeleteElement("force#7").ok);
+}
+
+TEST(CreateDelete, DeletingABodyDeletesWhatNamesItAsOneUndoStep) {
+  const std::string base = std::string(kBall) +
+                           "body a -shape ball\n"
+                           "body b -shape ball -init_pos {2 0 0}\n"
+                           "trajectory tr -points {{0 0 0 0} {1 0 1 0}} -body a -state pos\n"
+                           "trajectory free -points {{0 3 0 0} {1 3 1 0}}\n"
+                           "link -body1 a -offset1 {0.5 0 0} -body2 b -tightness 10\n"
+                           "link -body1 b -trajectory tr -tightness 10\n"
+                           "link -body1 b -trajectory free -tightness 10\n"
+                           "force -body a -x 0 -y -1 -z 0; force -body b -x 0 -y -1 -z 0\n"
+                           "torque -body a -x 0 -y 0 -z 1\n"
+                           "view chase -follow a\n"
+                           "view along -trajectory tr\n"
+                           "view side -rot {0 1.5 0}\n"
+                           "simulator -finish 1\n";
+  Session s(base);
+  ASSERT_FALSE(s.scene().has_errors());
+  const EditResult r = s.DeleteElement("a");
+  ASSERT_TRUE(r.ok) << r.error;
+  // The body, and what names it: its force, torque, link, trajectory and
+  // view, and through the trajectory the link and view along it.
+  EXPECT_EQ(s.text(), std::string(kBall) +
+                          "body b -shape ball -init_pos {2 0 0}\n"
+                          "trajectory free -points {{0 3 0 0} {1 3 1 0}}\n"
+                          "link -body1 b -trajectory free -tightness 10\n"
+                          "force -body b -x 0 -y -1 -z 0\n"
+                          "view side -rot {0 1.5 0}\n"
+                          "simulator -finish 1\n");
+  EXPECT_FALSE(s.scene().has_errors());
+  std::vector<std::string> removed = r.removed;
+  std::sort(removed.begin(), removed.end());
+  EXPECT_EQ(removed, (std::vector<std::string>{"along", "chase", "force#0", "link#0", "link#1",
+                                               "torque#0", "tr"}));
+  // One undo step brings all of it back.
+  ASSERT_TRUE(s.Undo());
+  EXPECT_EQ(s.text(), base);
+  // Deleting a trajectory takes the link and view along it.
+  ASSERT_TRUE(s.DeleteElement("free").ok);
+  EXPECT_EQ(s.text().find("free"), std::string::npos);
+  ASSERT_TRUE(s.Undo());
+  EXPECT_EQ(s.text(), base);
+  // Refused (nothing changes) when something that names the body cannot be
+  // deleted here.
+  Session looped(std::string(kBall) +
+                 "body a -shape ball\n"
+                 "foreach y {-1 -2} { force -body a -x 0 -y $y -z 0 }\n");
+  const std::string before = looped.text();
+  const EditResult refused = looped.DeleteElement("a");
+  EXPECT_FALSE(refused.ok);
+  EXPECT_NE(refused.error.find("made in a loop"), std::string::npos) << refused.error;
+  EXPECT_EQ(looped.text(), before);
 }
 
 TEST(Errors, AScriptWithErrorsStillAppliesItsValidPart) {

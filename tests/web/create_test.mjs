@@ -4,6 +4,7 @@
 // on the selected body, "Link" a link made by clicking two bodies.  Each new
 // element appears as one well-formatted command in every language viewer and
 // in both graphical viewers, and the session's Undo removes them again.
+// Delete of b1 removes the force and links that name it too, in one undo step.
 // Screenshots go to OUT_DIR.
 import { join } from 'node:path';
 import { browserTest, sleep, waitFor } from './common.mjs';
@@ -110,5 +111,28 @@ await browserTest(asgard, scene, 'create', async ({ check, url, context }) => {
     'and the body from the other tab\'s picture');
   check((await texts(pages)).every((t) => t === (lines.filter((l) => !bodyLine.test(l)).join('\n'))), 'the text is the original again');
   await b.screenshot({ path: join(outDir, '5-undone.png') });
+
+  // Delete b1: the force on it and both links that name it go too, in
+  // every view, as one undo step.
+  const original = (await texts([a]))[0];
+  const namesB1 = (l) => /^body b1 |^link -body1 b1 |-body2 b1 |^force .*-body b1 /.test(l);
+  check(original.split('\n').filter(namesB1).length === 4, 'the pendulum has b1, its force and two links naming it');
+  const hb1 = await a.evaluate(() => window.asgard.graphical.handleScreenPos('b1'));
+  await a.mouse.click(hb1.x, hb1.y);
+  check(await waitFor(() => a.evaluate(() => document.getElementById('selection').textContent === 'selected: b1'), 'b1 selected'), 'clicking b1 selects it');
+  await sleep(300);
+  await a.click('#delete-element');
+  const without = original.split('\n').filter((l) => !namesB1(l)).join('\n');
+  check(await waitFor(() => everyText(pages, (t) => t === without), 'b1 deleted everywhere'),
+    'Delete removes b1, its force and both links from every language viewer');
+  const listed = await waitFor(() => a.evaluate(() => /deleted b1 and what named it: link#0, link#1, force#0/.test(document.getElementById('status').textContent)), 'the status');
+  check(listed, `the status lists them: "${await a.evaluate(() => document.getElementById('status').textContent)}"`);
+  check(await waitFor(() => b.evaluate(() => !window.asgard.graphical.bodyNames().includes('b1') && window.asgard.graphical.linkLines.children.length === 0), 'b1 gone'),
+    'the other tab no longer draws b1 or any link');
+  check(await a.evaluate(() => window.asgard.state.diagnostics.filter((d) => d.severity === 'error').length === 0), 'the scene left has no errors');
+  await b.screenshot({ path: join(outDir, '6-deleted-b1.png') });
+  await a.click('#undo');
+  check(await waitFor(() => everyText(pages, (t) => t === original), 'undo delete'), 'one Undo brings b1, its force and links back everywhere');
+  check(await waitFor(() => b.evaluate(() => window.asgard.graphical.bodyNames().includes('b1')), 'b1 back'), 'and b1 is drawn again');
   check(errors.length === 0, `no script errors in the pages ${errors.join('; ')}`);
 });

@@ -216,7 +216,11 @@ function setupCreateMenu() {
     const element = g().selectedElement;
     if (!element) return;
     try {
-      await run('delete', { element });
+      // A body goes with the forces, torques, links, trajectories and views
+      // that name it (one undo step); the status line lists them.
+      const r = await run('delete', { element });
+      const removed = (r && r.removed) || [];
+      app.setStatus(`deleted ${element}${removed.length ? ` and what named it: ${removed.join(', ')}` : ''}`);
       g().select(null);
     } catch { /* the status says why */ }
   };
