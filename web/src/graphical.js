@@ -52,7 +52,7 @@ export class GraphicalViewer {
     this.handleSize = 0.3;
     this.radius = 10;
     this.style = 'shaded';
-    this.shown = { bodies: true, handles: true, velocities: true, links: true, forces: true, lights: true, trajectories: false };
+    this.shown = { bodies: true, handles: true, velocities: true, links: true, forces: true, lights: true, trajectories: false, views: false };
     this.poses = null;
     this.t = 0;
     this.frame = 0;
@@ -380,6 +380,7 @@ export class GraphicalViewer {
         } });
     });
     ix.ofKind('trajectory').forEach((element) => this.addTrajectory(element, add));
+    ix.ofKind('view').forEach((element, i) => this.addView(element, i, add));
     this.applyVisibility();
     this.placeHandles();
     if (this.ui.knots) this.ui.knots();
@@ -408,6 +409,60 @@ export class GraphicalViewer {
     });
     line.userData.knots = handles;
     this.paths.add(line);
+  }
+
+  // A `view` element (seed 4.1.7) as asgard render places its camera: the
+  // rotation R (-rot, world to view), -pos (scene units after rotation) and
+  // -center c put the point looked at at Rᵀ(−pos) + c and the eye along
+  // Rᵀ ẑ from it.  Three handles: -center (a ball at c; read-only when
+  // -follow or -trajectory moves it), -pos (a knob on a spoke from the
+  // point looked at along the view's up), -rot (a knob on a spoke from that
+  // point toward the eye; dragging it turns the view by the rotation taking
+  // the spoke to the pointer).  The spokes are 0.3 of the scene's radius.  An
+  // option not written takes the value the core's camera has (poses.views)
+  // and is appended when dragged.  `index`: the view's place among views.
+  addView(element, index, add) {
+    const ix = this.index, core = (this.poses.views || [])[index];
+    if (!core || !core.cameras.length) return;
+    const [eye, target, up] = core.cameras[0].map((v) => new THREE.Vector3(...v));
+    const z = eye.clone().sub(target).normalize(), y = up.clone().normalize(), x = y.clone().cross(z);
+    const coreRot = new THREE.Quaternion().setFromRotationMatrix(new THREE.Matrix4().makeBasis(x, y, z)).invert();
+    const fallbackRot = rotationLiteral(coreRot, 3);
+    const q = () => rotationOf(rot.value || fallbackRot);
+    const p = () => new THREE.Vector3(...(pos.value || ZERO));
+    const c = () => new THREE.Vector3(...centre.value);
+    const looked = () => p().negate().applyQuaternion(q().invert()).add(c());
+    const spoke = () => this.radius * 0.3;
+    const rot = add({ kind: 'view', element, param: 'rot', ...ix.vector(element, 'rot', { counts: [3, 4], fallback: fallbackRot }),
+      anchor: looked,
+      where: () => looked().add(new THREE.Vector3(0, 0, spoke()).applyQuaternion(q().invert())),
+      valueFrom: (w, d) => {
+        const from = d.point.clone().sub(d.anchor).normalize(), to = w.clone().sub(d.anchor);
+        if (to.lengthSq() === 0) return d.value.slice();
+        const inverse = new THREE.Quaternion().setFromUnitVectors(from, to.normalize()).multiply(rotationOf(d.value).invert());
+        return rotationLiteral(inverse.invert(), d.value.length === 4 ? 4 : 3);
+      } });
+    // The -pos knob stands off the point looked at along the view's up (so
+    // that it is not under the centre's ball when -pos is zero); dragging
+    // it moves the point looked at as much.
+    const upward = () => new THREE.Vector3(0, spoke(), 0).applyQuaternion(q().invert());
+    const pos = add({ kind: 'view', element, param: 'pos', ...ix.vector(element, 'pos'),
+      anchor: looked,
+      where: () => looked().add(upward()),
+      valueFrom: (w) => {
+        const v = w.clone().sub(upward()).sub(c()).applyQuaternion(q()).negate();
+        return [v.x, v.y, v.z].map((k) => round(k));
+      } });
+    // Without -center (or with one that moves) the centre at the start is
+    // where the core's camera puts it: the target plus Rᵀ pos.
+    const c0 = target.clone().add(p().applyQuaternion(q().invert()));
+    const moving = ix.text(element, 'follow') ? `-follow ${ix.text(element, 'follow')} moves it`
+      : ix.text(element, 'trajectory') ? `-trajectory ${ix.text(element, 'trajectory')} moves it` : '';
+    const centreSpec = ix.vector(element, 'center', { fallback: [c0.x, c0.y, c0.z] });
+    if (moving || !centreSpec.value) Object.assign(centreSpec, { editable: centreSpec.editable && !moving, reason: moving || centreSpec.reason, value: [c0.x, c0.y, c0.z] });
+    const centre = add({ kind: 'view', element, param: 'center', ...centreSpec,
+      where: c,
+      valueFrom: (w, d) => d.value.map((v, k) => round(v + w.getComponent(k) - d.point.getComponent(k))) });
   }
 
   // The curve of a trajectory as drawn: through its handles, else the core's samples.
@@ -667,6 +722,7 @@ export class GraphicalViewer {
       this.canvas.setPointerCapture(ev.pointerId);
       if (this.playing) this.play();
       this.dragging = h;
+      this.lastDrag = null;
       this.seek(this.poses.times[0]);
       const point = h.mesh.position.clone();
       this.dragStart = { point, value: h.value.slice(), anchor: h.anchor ? h.anchor() : null };
@@ -689,15 +745,7 @@ export class GraphicalViewer {
         this.showLabel(h ? this.describe(h) : '');
         return;
       }
-      this.raycaster.setFromCamera(this.pointer(ev), this.camera);
-      const p = this.raycaster.ray.intersectPlane(this.plane, new THREE.Vector3());
-      if (!p || !this.grab) return;
-      const h = this.dragging;
-      const at = this.dragStart.point.clone().add(p.sub(this.grab));
-      h.value = h.valueFrom(at, this.dragStart, ev);
-      this.seek(this.poses.times[0]);
-      this.showLabel(this.describe(h));
-      this.sendDrag(h);
+      this.dragTo(ev);
     });
     const end = async (ev) => {
       if (!this.dragging) {
@@ -717,7 +765,40 @@ export class GraphicalViewer {
     };
     this.canvas.addEventListener('pointerup', end);
     this.canvas.addEventListener('pointercancel', end);
-    window.addEventListener('keydown', (ev) => { if (ev.key === 'Escape' && this.mode) this.cancelPick(); });
+    window.addEventListener('keydown', (ev) => {
+      if (ev.key === 'Escape' && this.mode) this.cancelPick();
+      // While dragging (seed 4.1.3): z pushes the handle away from the
+      // viewer, x pulls it nearer, by a twentieth of the scene's radius.
+      if (this.dragging && this.lastDrag && (ev.key === 'z' || ev.key === 'x')) {
+        ev.preventDefault();
+        this.pushDepth((ev.key === 'z' ? 1 : -1) * this.depthStep());
+      }
+    });
+  }
+
+  depthStep() { return this.radius / 20; }
+
+  // The dragged handle at the pointer of `ev`: the point of the drag plane
+  // under it, moved as the grab point was.
+  dragTo(ev) {
+    this.lastDrag = { clientX: ev.clientX, clientY: ev.clientY, shiftKey: ev.shiftKey };
+    this.raycaster.setFromCamera(this.pointer(ev), this.camera);
+    const p = this.raycaster.ray.intersectPlane(this.plane, new THREE.Vector3());
+    if (!p || !this.grab) return;
+    const h = this.dragging;
+    const at = this.dragStart.point.clone().add(p.sub(this.grab));
+    h.value = h.valueFrom(at, this.dragStart, this.lastDrag);
+    this.seek(this.poses.times[0]);
+    this.showLabel(this.describe(h));
+    this.sendDrag(h);
+  }
+
+  // Moves the drag plane by `depth` along the view direction: the handle
+  // (the plane's point under the pointer, offset as when it was grabbed)
+  // goes that much deeper and stays under the pointer.
+  pushDepth(depth) {
+    this.plane.constant -= depth;
+    this.dragTo(this.lastDrag);
   }
 
   // --- selection and clicks for creating elements (seed 4.1) ---------------
@@ -854,7 +935,7 @@ export class GraphicalViewer {
   handleList() {
     return this.handles.map((h) => ({
       id: h.id, kind: h.kind, element: h.element, param: h.param, value: h.value, editable: h.editable,
-      reason: h.reason, shown: h.object.visible && h.mesh.visible, arrow: !!(h.arrow && h.arrow.visible),
+      reason: h.reason, shown: h.object.visible && h.mesh.visible, arrow: !!(h.arrow && h.arrow.visible), world: h.mesh.position.toArray(),
       ...this.toScreen(h.mesh.position),
     }));
   }
