@@ -9,6 +9,7 @@ import { download, gltfText, imageBlob, movieRequest } from './export.js';
 import { GraphicalViewer } from './graphical.js';
 import { LanguageViewer } from './language.js';
 import { TrajectoryEditor } from './timeline.js';
+import { ShapeEditor } from './shape.js';
 
 const params = new URLSearchParams(location.search);
 const animation = Number(params.get('a') || 0);
@@ -33,6 +34,7 @@ function applyState(state) {
   app.graphical.setParameters(state.parameters, state.elements);
   showSimulatorOptions(state);
   showCreateMenu(state);
+  if (app.shapes) app.shapes.refresh();
   const errors = state.diagnostics.filter((d) => d.severity === 'error');
   app.setStatus(errors.length ? `${errors.length} error(s): the last good scene is shown` : '');
 }
@@ -226,6 +228,44 @@ function setupCreateMenu() {
   };
 }
 
+// A parameter's word in the text as byte offsets [begin, end) (lines and
+// columns count bytes, as the session does), with the text's bytes.
+function wordBytes(p) {
+  const bytes = new TextEncoder().encode(app.text);
+  const offset = (line, column) => {
+    let i = 0;
+    for (let l = 1; l < line && i < bytes.length; ++i) if (bytes[i] === 10) ++l;
+    return i + column - 1;
+  };
+  return { bytes, begin: offset(p.line, p.column), end: offset(p.end_line, p.end_column) };
+}
+const decode = (x) => new TextDecoder().decode(x);
+
+// The scene's shape sets and their -desc words, for the shape editor.  A
+// -desc the editor may rewrite is a braced word (Tcl substitutes nothing
+// in it) of a command that ran once.
+function shapeSets() {
+  if (!app.state) return [];
+  return app.state.elements.filter((e) => e.kind === 'shape_set').map((e) => {
+    const p = app.state.parameters.find((x) => x.element === e.element && x.param === 'desc');
+    let reason = !e.editable ? e.reason : !p ? 'it has no -desc' : p.line > 0 ? '' : 'its -desc could not be located';
+    if (!reason) {
+      const w = wordBytes(p);
+      if (w.bytes[w.begin] !== 123) reason = 'its -desc is not a braced literal (it is built by variables or commands)';
+    }
+    return { element: e.element, value: p ? p.value : '', editable: !reason, reason };
+  });
+}
+
+// The shape editor's -desc in the text: the braced word replaced, then an
+// Update, so that the change is one undo step and reaches every view.
+async function writeShape(element, desc) {
+  const p = app.state && app.state.parameters.find((x) => x.element === element && x.param === 'desc');
+  if (!p || !shapeSets().some((s) => s.element === element && s.editable)) return;
+  const { bytes, begin, end } = wordBytes(p);
+  try { await run('update', { text: `${decode(bytes.slice(0, begin))}{${desc}}${decode(bytes.slice(end))}` }); } catch { /* the status says why */ }
+}
+
 // Exports (control panel): downloads of the picture, the scene as glTF,
 // and a movie the server renders with asgard render.
 function setupExports() {
@@ -298,6 +338,11 @@ async function main() {
       await run('simulate', {}).catch(() => {});
     },
   });
+  app.shapes = new ShapeEditor(document.getElementById('shape-editor'), {
+    shapes: () => shapeSets(),
+    write: (element, desc) => { app.shapeWrites = (app.shapeWrites || Promise.resolve()).then(() => writeShape(element, desc)); },
+  });
+  document.getElementById('shapes-open').onclick = () => app.shapes.show(!app.shapes.shown());
   setupCreateMenu();
   setupExports();
   document.getElementById('camera-view').onchange = (ev) => app.graphical.setView(ev.target.value);
