@@ -14,6 +14,9 @@
 //                      intensity}]}
 //   poses {}        → {t0, t1, frame_rate, times: [...], bodies: [names],
 //                      poses: [[x y z qx qy qz qw per body] per frame],
+//                      velocities: [[vx vy vz wx wy wz per body] per frame]
+//                      (ω in world axes; differences of the poses over
+//                      1e-5 of the run),
 //                      forces: [[[fx fy fz] | null per scene force] per frame],
 //                      trajectories: [{name, values: [[x y z] per frame]}],
 //                      framing: {center, radius, eye_distance, tan_half_fov}

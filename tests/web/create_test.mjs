@@ -72,6 +72,18 @@ await browserTest(asgard, scene, 'create', async ({ check, url, context }) => {
     return d !== null && Math.abs(d + 0.5) < 1e-3;
   }, 'the force in the motion');
   check(fall, 'the re-simulated box falls 0.5 in the first second under the new force');
+  // Between frames the pose is the cubic Hermite interpolant of the frames'
+  // poses and velocities: exact for this parabola (y0 − t²/2), where the
+  // linear mix of the two frames is off by (Δt/2)²/2.
+  const mid = await b.evaluate(() => {
+    const g = window.asgard.graphical, times = g.poses.times, i = times.findIndex((t) => t >= 0.5);
+    const t = (times[i] + times[i + 1]) / 2, y0 = g.bodyPosition('body1', 0)[1];
+    const linear = (g.bodyPosition('body1', i)[1] + g.bodyPosition('body1', i + 1)[1]) / 2;
+    g.seek(t);
+    return { t, dt: times[i + 1] - times[i], y: g.bodies.get('body1').group.position.y, exact: y0 - (t * t) / 2, linear };
+  });
+  check(Math.abs(mid.y - mid.exact) < 1e-5 && Math.abs(mid.linear - mid.exact) > 0.9 * (mid.dt * mid.dt) / 8,
+    `at t = ${mid.t.toFixed(4)}, between frames, the box is drawn at y = ${mid.y.toFixed(6)}, the exact ${mid.exact.toFixed(6)} (linear: ${mid.linear.toFixed(6)})`);
   await a.screenshot({ path: join(outDir, '2-new-force.png') });
 
   // Link: two clicks, on b3's ball and on the box (handles are not picked

@@ -16,6 +16,30 @@ import { TrajectoryCurve, knotsText, parseKnots } from './trajectory.js';
 
 const ZERO = [0, 0, 0];
 
+// A body's pose between two frames by cubic Hermite interpolation of the
+// poses [x y z qx qy qz qw] and velocities [vx vy vz wx wy wz] (ω in world
+// axes) at both ends, `dt` apart, at fraction s: positions exactly, the
+// quaternion's components with q̇ = ½ (ω, 0) ⊗ q, then normalized.  Set on
+// `object` (its position and quaternion).
+export function hermitePose(pa, va, pb, vb, dt, s, object) {
+  const s2 = s * s, s3 = s2 * s;
+  const h00 = 2 * s3 - 3 * s2 + 1, h10 = s3 - 2 * s2 + s, h01 = -2 * s3 + 3 * s2, h11 = s3 - s2;
+  const mix = (a, da, b, db) => h00 * a + h10 * dt * da + h01 * b + h11 * dt * db;
+  object.position.set(...[0, 1, 2].map((k) => mix(pa[k], va[k], pb[k], vb[k])));
+  const qdot = (q, w) => [  // ½ (ω, 0) ⊗ q for q = [x y z w]
+    0.5 * (q[3] * w[0] + w[1] * q[2] - w[2] * q[1]),
+    0.5 * (q[3] * w[1] + w[2] * q[0] - w[0] * q[2]),
+    0.5 * (q[3] * w[2] + w[0] * q[1] - w[1] * q[0]),
+    -0.5 * (w[0] * q[0] + w[1] * q[1] + w[2] * q[2])];
+  const qa = pa.slice(3, 7);
+  let qb = pb.slice(3, 7);
+  if (qa.reduce((acc, v, k) => acc + v * qb[k], 0) < 0) qb = qb.map((v) => -v);
+  const da = qdot(qa, va.slice(3, 6)), db = qdot(qb, vb.slice(3, 6));
+  const q = [0, 1, 2, 3].map((k) => mix(qa[k], da[k], qb[k], db[k]));
+  const n = Math.hypot(...q) || 1;
+  object.quaternion.set(q[0] / n, q[1] / n, q[2] / n, q[3] / n);
+}
+
 export class GraphicalViewer {
   constructor(canvas, ui) {
     this.canvas = canvas;
@@ -634,9 +658,15 @@ export class GraphicalViewer {
     const s = j > i && times[j] > times[i] ? (t - times[i]) / (times[j] - times[i]) : 0;
     this.frame = s > 0.5 ? j : i;
     const qa = new THREE.Quaternion(), qb = new THREE.Quaternion();
+    const vel = this.poses.velocities;
     for (const b of this.bodies.values()) {
       if (b.index < 0) continue;
       const a = poses[i], c = poses[j], k = 7 * b.index;
+      if (vel && j > i) {
+        hermitePose(a.slice(k, k + 7), vel[i].slice(6 * b.index, 6 * b.index + 6), c.slice(k, k + 7),
+          vel[j].slice(6 * b.index, 6 * b.index + 6), times[j] - times[i], s, b.group);
+        continue;
+      }
       b.group.position.set(a[k] + s * (c[k] - a[k]), a[k + 1] + s * (c[k + 1] - a[k + 1]), a[k + 2] + s * (c[k + 2] - a[k + 2]));
       qa.set(a[k + 3], a[k + 4], a[k + 5], a[k + 6]);
       qb.set(c[k + 3], c[k + 4], c[k + 5], c[k + 6]);
