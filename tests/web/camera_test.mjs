@@ -254,6 +254,8 @@ await browserTest(asgard, scene, 'camera', async ({ check, url, context }) => {
   check(dist(hc.world, target) < 1e-6, "side's -center ball is at the point its camera looks at (-pos is zero)");
   check(angle(sub(hr.world, target), sub(eye, target)) < 1e-6 && Math.abs(dist(hr.world, target) - spokeLength) < 1e-6, 'its -rot knob is on the line toward its eye');
   check(angle(sub(hp.world, target), up) < 1e-6, 'its -pos knob above that point along its up');
+  const viewLiterals = await page.evaluate(() => [...document.querySelectorAll('.cm-literal-view')].map((e) => e.textContent));
+  check(viewLiterals.includes('{0 1.5707963267948966 0}'), `the language viewer highlights the views' literals (${viewLiterals.join(', ')})`);
   await page.screenshot({ path: join(outDir, '8-view-handles.png') });
 
   // -center: dragged, with 'z' pushing it away three times and 'x' pulling
