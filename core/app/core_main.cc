@@ -350,10 +350,14 @@ class Slave {
   // columns counted in bytes) and the new text.
   json Edit(const json& params) {
     if (!session_) throw RpcError{kSceneError, "no scene is loaded"};
+    if (params.contains("element") && params["element"].is_string() && params.contains("param") &&
+        params["param"].is_string() && params.contains("text") && params["text"].is_string())
+      return Edited(session_->SetWord(params["element"], params["param"], params["text"]));
     if (!params.contains("element") || !params["element"].is_string() ||
         !params.contains("param") || !params["param"].is_string() || !params.contains("values") ||
         !params["values"].is_array())
-      throw RpcError{kInvalidParams, "invalid params: edit needs element, param and values"};
+      throw RpcError{kInvalidParams,
+                     "invalid params: edit needs element, param and values (or text)"};
     std::vector<double> values;
     for (const auto& v : params["values"]) {
       if (!v.is_number()) throw RpcError{kInvalidParams, "invalid params: values must be numbers"};

@@ -239,6 +239,44 @@ EditResult Session::SetParameter(const std::string& element, const std::string& 
   return ApplyEdits(std::move(edits));
 }
 
+EditResult Session::SetWord(const std::string& element, const std::string& param,
+                            const std::string& text) {
+  EditResult result;
+  const auto elements = Elements(scene_);
+  const ElementRef* e = FindOrReport(elements, element, result);
+  if (!e) return result;
+  const scene::Word* w = e->base->option(param);
+  std::string reason = ReadOnlyReason(*e->base, nullptr);
+  if (reason.empty() && !w) reason = "it has no -" + param;
+  if (reason.empty() && !w->span.known()) reason = "its word could not be located in the text";
+  if (reason.empty() && text_[w->span.begin] != '{') reason = "its word is not a braced literal";
+  if (!reason.empty()) {
+    result.error = element + "." + param + " is read-only: " + reason;
+    return result;
+  }
+  // The new word must stay one braced word: balanced, unescaped braces.
+  int depth = 0;
+  for (size_t i = 0; i < text.size() && depth >= 0; ++i) {
+    if (text[i] == '\\')
+      ++i;
+    else if (text[i] == '{')
+      ++depth;
+    else if (text[i] == '}')
+      --depth;
+  }
+  if (depth != 0 || (!text.empty() && text.back() == '\\')) {
+    result.error = "the new -" + param + " of " + element + " has unbalanced braces";
+    return result;
+  }
+  const TextEdit edit = Minimal(text_, w->span.begin, w->span.end, "{" + text + "}");
+  if (edit.begin == edit.end && edit.text.empty()) {  // the same word: no undo step
+    result.ok = true;
+    return result;
+  }
+  pending_key_ = element + '\0' + param;
+  return ApplyEdits({edit});
+}
+
 EditResult Session::CreateElement(const std::string& command) {
   EditResult result;
   std::string cmd = command;

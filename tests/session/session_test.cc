@@ -494,6 +494,26 @@ TEST(CreateDelete, DeletingABodyDeletesWhatNamesItAsOneUndoStep) {
   EXPECT_EQ(looped.text(), before);
 }
 
+TEST(CreateDelete, ABracedWordIsReplacedWholeAndADragOfItIsOneUndoStep) {
+  const std::string base = "shape_set s -desc {-sub {-sphere 0.5}}\nbody a -shape s\n";
+  Session s(base);
+  ASSERT_TRUE(s.SetWord("s", "desc", "-sub {-sphere 0.7}").ok);
+  ASSERT_TRUE(s.SetWord("s", "desc", "-sub {-sphere 0.9}").ok);
+  EXPECT_EQ(s.text(), "shape_set s -desc {-sub {-sphere 0.9}}\nbody a -shape s\n");
+  EXPECT_DOUBLE_EQ(s.scene().shape_sets[0].pieces[0].radius, 0.9);
+  ASSERT_TRUE(s.SetWord("s", "desc", "-sub {-sphere 0.9}").ok);  // the same word: no step
+  ASSERT_TRUE(s.Undo());
+  EXPECT_EQ(s.text(), base);
+  // Unbalanced braces would end the word early: refused, nothing changes.
+  const EditResult bad = s.SetWord("s", "desc", "-sub {-sphere 1} }");
+  EXPECT_FALSE(bad.ok);
+  EXPECT_NE(bad.error.find("unbalanced"), std::string::npos) << bad.error;
+  EXPECT_EQ(s.text(), base);
+  // A word that is not braced (a variable) is read-only.
+  Session v("set d {-sub {-sphere 0.5}}\nshape_set s -desc $d\n");
+  EXPECT_FALSE(v.SetWord("s", "desc", "-sub {-sphere 1}").ok);
+}
+
 TEST(Errors, AScriptWithErrorsStillAppliesItsValidPart) {
   Session s(std::string(kBall) + "body a -shape ball\nbody b -shape nosuch\nsimulator -finish 1\n");
   EXPECT_TRUE(s.scene().has_errors());

@@ -4,7 +4,8 @@
 // has, the text's -desc has, and the core's mesh of the body has; dragging it
 // into the cube makes it an inside point (drawn so) and the hull a cube
 // again; a sphere's surface handle sets its radius; snapping rounds to the
-// grid; Delete vertex removes the chosen point; one Undo per change.
+// grid; Delete vertex removes the chosen point; the text follows a drag
+// while it lasts; one Undo per change (a whole drag).
 import { join } from 'node:path';
 import { browserTest, openEditor, sleep, waitFor } from './common.mjs';
 
@@ -59,6 +60,9 @@ await browserTest(asgard, scene, 'shape', async ({ check, url, context }) => {
   for (let i = 1; i <= 6; ++i) { await page.mouse.move(added.x + ((centre.x - added.x) * i) / 6, added.y + ((centre.y - added.y) * i) / 6); await sleep(20); }
   h = await list();
   check(h.find((x) => x.piece === 0 && x.index === 8).inside, 'dragged into the cube, the point is shown as inside the hull while dragging');
+  const moving = h.find((x) => x.piece === 0 && x.index === 8).world.map((v) => Math.round(v * 1e4) / 1e4);
+  check(await waitFor(async () => (await desc()).includes(`{${moving.join(' ')}}`), 'the text while dragging'),
+    `while dragging, the language viewer's -desc already has the moved point {${moving.join(' ')}}`);
   await page.locator('#shape-editor canvas').screenshot({ path: join(outDir, '3-inside.png') });
   await page.mouse.up();
   await waitFor(() => page.evaluate((k) => window.asgard.stateCount > k, before), 'the state after the drag');
@@ -99,6 +103,10 @@ await browserTest(asgard, scene, 'shape', async ({ check, url, context }) => {
   // Undo: the vertex back, then the radius, then inside/outside moves.
   await stateAfter(() => page.click('#undo'));
   check((await list()).filter((x) => x.piece === 0).length === 9, 'Undo brings the deleted vertex back');
+  await stateAfter(() => page.click('#undo'));
+  check(/-pos \{0 2 0\} -sphere 0.5\}/.test(await desc()), 'the next Undo the radius (the whole drag)');
+  await stateAfter(() => page.click('#undo'));
+  check((await desc()) === text1, 'and the next the drag into the cube, in one step');
   await page.locator('#shape-editor canvas').screenshot({ path: join(outDir, '4-undone.png') });
   check(errors.length === 0, `no page errors ${errors.join('; ')}`);
 });

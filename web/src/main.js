@@ -257,13 +257,23 @@ function shapeSets() {
   });
 }
 
-// The shape editor's -desc in the text: the braced word replaced, then an
-// Update, so that the change is one undo step and reaches every view.
-async function writeShape(element, desc) {
-  const p = app.state && app.state.parameters.find((x) => x.element === element && x.param === 'desc');
-  if (!p || !shapeSets().some((s) => s.element === element && s.editable)) return;
-  const { bytes, begin, end } = wordBytes(p);
-  try { await run('update', { text: `${decode(bytes.slice(0, begin))}{${desc}}${decode(bytes.slice(end))}` }); } catch { /* the status says why */ }
+// The shape editor's -desc: the braced word replaced through the session
+// (set_parameter with text), so that every language viewer shows it while
+// dragging and a drag is one undo step; when `done`, re-simulated.  One
+// call is in flight at a time; meanwhile only the newest word waits.
+const shapeWriter = { busy: false, next: null };
+async function writeShape(element, desc, done) {
+  shapeWriter.next = { element, desc, done: done || (shapeWriter.next && shapeWriter.next.done) };
+  if (shapeWriter.busy) return;
+  shapeWriter.busy = true;
+  try {
+    while (shapeWriter.next) {
+      const w = shapeWriter.next;
+      shapeWriter.next = null;
+      try { await conn.call('set_parameter', { element: w.element, param: 'desc', text: w.desc }); } catch (e) { app.setStatus(String(e.message || e)); }
+      if (w.done && !shapeWriter.next) await run('simulate', {}).catch(() => {});
+    }
+  } finally { shapeWriter.busy = false; }
 }
 
 // Exports (control panel): downloads of the picture, the scene as glTF,
@@ -340,7 +350,10 @@ async function main() {
   });
   app.shapes = new ShapeEditor(document.getElementById('shape-editor'), {
     shapes: () => shapeSets(),
-    write: (element, desc) => { app.shapeWrites = (app.shapeWrites || Promise.resolve()).then(() => writeShape(element, desc)); },
+    // While dragging: the -desc word rewritten in every language viewer
+    // (the newest when one is in flight); `done`: then re-simulate, which
+    // also ends the undo step.
+    write: (element, desc, done) => writeShape(element, desc, done),
   });
   document.getElementById('shapes-open').onclick = () => app.shapes.show(!app.shapes.shown());
   setupCreateMenu();
@@ -352,7 +365,7 @@ async function main() {
   conn.on('text', (e) => {
     app.text = e.text;
     for (const v of app.languageViewers) v.showSession(e.text, null);
-    app.graphical.parameterEdited(e.element, e.param, e.values);
+    if (Array.isArray(e.values)) app.graphical.parameterEdited(e.element, e.param, e.values);
   });
   conn.on('state', (e) => applyState(e.state));
   conn.on('scene', (e) => app.graphical.setScene(e.meshes, e.poses));

@@ -9,8 +9,8 @@
 // (a hull keeps four); Add sphere adds a sphere piece; Snap rounds dragged
 // and added points to the grid.  Every change is written back as the
 // shape_set's -desc literal, one `-sub {…}` per piece (faces and boxes
-// become -vertices: only the hull's points matter), through an ordinary
-// Update when a drag ends, so that undo covers it.
+// become -vertices: only the hull's points matter), through the session on
+// every move of a drag (one undo step), re-simulated when it ends.
 import * as THREE from 'three';
 import { ConvexHull } from 'three/examples/jsm/math/ConvexHull.js';
 import { SphereControls } from './camera.js';
@@ -292,16 +292,19 @@ export class ShapeEditor {
       if (!p || !this.drag.grab) return;
       const at = this.snapped(this.drag.start.clone().add(p.sub(this.drag.grab)).toArray());
       this.moveHandle(this.drag.h, at);
+      this.drag.moved = true;
       this.build();
+      this.write(false);
       this.drag.h = this.handles.find((x) => x.piece === this.drag.h.piece && x.index === this.drag.h.index);
       this.say(this.describe(this.drag.h));
     });
     const end = () => {
       this.controls.enabled = true;
       if (!this.drag) return;
+      const moved = this.drag.moved;
       this.drag = null;
       this.controls.enabled = true;
-      this.write();
+      if (moved) this.write();  // a press alone only chooses the point
     };
     this.canvas.addEventListener('pointerup', end);
     this.canvas.addEventListener('pointercancel', end);
@@ -368,8 +371,10 @@ export class ShapeEditor {
     this.write();
   }
 
-  write() {
-    if (!this.reason && this.element) this.ui.write(this.element, writeDesc(this.pieces));
+  // The pieces as the -desc word: while dragging (done false), or a change
+  // that is finished (re-simulated).
+  write(done = true) {
+    if (!this.reason && this.element) this.ui.write(this.element, writeDesc(this.pieces), done);
   }
 
   // For tests: handles as {piece, index, inside, x, y (page pixels), world}.
