@@ -53,7 +53,10 @@ convert writes IN as OUT; the extension of OUT chooses the output device:
   .pdf        pages (A4), text set with Pango, each animation as a frame
   .png        the same pages as pictures (OUT, OUT-2.png, ...)
   .html       one self-contained page; each animation plays with play/pause
-              and a seek slider, starting from its poster frame
+              and a seek slider, starting from its poster frame: in WebGL
+              from its embedded meshes and poses (rotatable: drag, wheel,
+              double-click), or its pre-rendered frames where WebGL is
+              missing (see --html)
   .ens .xml   the document itself, in either flavour (byte-exact)
 
 verb runs a host verb (seed 6.2.4) headless on the first animation (or the
@@ -76,6 +79,11 @@ Options:
   --time T             time of the frames on pages and of poster frames
                        (default: the start of each animation)
   --handles            show position handles in the pictures
+  --html MODE          what an .html page embeds per animation: webgl (the
+                       default: meshes, poses and the WebGL player, with the
+                       poster and frames as the fallback), webgl-poster
+                       (the same with only the poster as the fallback), or
+                       frames (pre-rendered frames only)
   --dpi N              resolution of .png pages (default 96)
   --layout FILE        also write the page layout as JSON
   --plugin-path DIR    look for medium plugins in DIR first (repeatable;
@@ -104,7 +112,7 @@ ignored (each said on stderr).
 struct Options {
   std::string command, in, out, verb, layout;
   std::vector<std::string> verb_args, plugin_path;
-  std::string core;
+  std::string core, html = "webgl";
   std::optional<double> time, from, to;
   double timeout = 0, dpi = 96, slave_memory = 0;
   int animation = 1, slaves = kDefaultMaxSlaves;
@@ -159,6 +167,11 @@ std::optional<int> Parse(const std::vector<std::string>& args, Options& o) {
       if (a == "--layout") o.layout = *v;
       if (a == "--plugin-path") o.plugin_path.push_back(*v);
       if (a == "--core") o.core = *v;
+    } else if (a == "--html") {
+      auto v = value();
+      if (!v || (*v != "webgl" && *v != "webgl-poster" && *v != "frames"))
+        return Usage("--html needs webgl, webgl-poster or frames");
+      o.html = *v;
     } else if (a == "--handles") {
       o.handles = true;
     } else if (a == "--quiet") {
@@ -215,6 +228,7 @@ struct Host {
   bool incomplete = false;      // a warning changed OUT: exit kExitIncomplete
   std::set<int> reported;       // items whose failure is on stderr
   std::set<int> noted_restart;  // items whose restart is on stderr
+  std::optional<std::string> player_script;
 
   // Something OUT shows otherwise than IN asks: always said, and the exit
   // status says so too.
@@ -330,9 +344,44 @@ struct Host {
         a.times.push_back(item.poster.time);
       }
     }
+    if (a.live && o.html != "frames" && !PlayerScript().empty()) {
+      // The same slave's meshes and poses, at the frames' rate.
+      std::string reply, error;
+      const double rate = a.times.size() > 1 ? (a.times.size() - 1) / (a.times.back() - a.times[0])
+                                             : protocol::kDefaultFrameRate;
+      char line[64];
+      std::snprintf(line, sizeof line, "player %.9g", rate);
+      if (doc->Command(item, line, &reply))
+        a.player = PlayerJson(reply, &error);
+      else
+        error = reply;
+      if (a.player.empty()) {
+        Warn(Where(item) + "no WebGL data (" + error + "); the page plays its frames");
+      } else if (o.html == "webgl-poster") {
+        const auto k = static_cast<size_t>(a.poster);
+        a.frames = {a.frames[k]};
+        a.times = {a.times[k]};
+        a.poster = 0;
+      }
+    }
     a.caption = a.live ? "Animation " + std::to_string(item.index) + " · " + item.message
                        : Caption(item, false, 0);
     return a;
+  }
+
+  // The WebGL player of .html pages (web/src/player.js, bundled by the
+  // build), read once; empty when it is not there (said once).
+  const std::string& PlayerScript() {
+    if (!player_script) {
+      player_script.emplace();
+      const std::string path = serve::WebRoot() + "/player.js";
+      std::string error;
+      if (!document::ReadFile(path, *player_script, &error) || player_script->empty())
+        Note(path +
+             " is missing (the build bundles it with node and npm); "
+             "pages play pre-rendered frames");
+    }
+    return *player_script;
   }
 
   std::string Title() const {
@@ -360,7 +409,8 @@ struct Host {
         blocks = {{Block::kTitle, "", "Asgard viewer: animation " + std::to_string(k + 1)},
                   {Block::kEmbedded, "", "", k}};
       }
-      const std::string html = WriteHtml(Title(), blocks, animations, viewer_only);
+      const std::string html = WriteHtml(Title(), blocks, animations, viewer_only,
+                                         o.html == "frames" ? "" : PlayerScript());
       if (!document::WriteFileAtomic(out, html, &error)) return Fail(error);
       if (!o.quiet) std::cout << o.in << ": wrote " << out << "\n";
       return 0;

@@ -83,6 +83,17 @@ std::string Find(const std::vector<std::string>& candidates, const std::string& 
   return (ExeDir() / candidates.front()).string();
 }
 
+}  // namespace
+
+std::string WebRoot(const std::string& given) {
+  const char* env = std::getenv("ASGARD_WEB_ROOT");
+  return !given.empty() ? given
+         : env && *env  ? std::string(env)
+                        : Find({"../web", "../../web"}, "index.html");
+}
+
+namespace {
+
 Options MakeOptions(const LaunchOptions& lo) {
   Options o;
   o.port = lo.port;
@@ -91,10 +102,7 @@ Options MakeOptions(const LaunchOptions& lo) {
           ? lo.core
           : (fs::path(Find({".", "../core/app"}, "asgard-core")) / "asgard-core").string();
   o.render_program = (fs::path(Find({".", "../core/app"}, "asgard")) / "asgard").string();
-  const char* env = std::getenv("ASGARD_WEB_ROOT");
-  o.web_root = !lo.web_root.empty() ? lo.web_root
-               : env && *env        ? std::string(env)
-                                    : Find({"../web", "../../web"}, "index.html");
+  o.web_root = WebRoot(lo.web_root);
   const bool open = lo.open;
   o.on_listening = [open](int port) {
     const std::string url = "http://127.0.0.1:" + std::to_string(port) + "/";

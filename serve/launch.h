@@ -24,6 +24,11 @@ bool ParseLaunchArgs(const std::vector<std::string>& args, std::string* file, La
 int ServeDocument(const std::string& path, const LaunchOptions& o);
 int ServeScene(const std::string& path, const LaunchOptions& o);
 
+// The folder of the browser bundle (index.html, editor.js, player.js):
+// `given` when not empty, else $ASGARD_WEB_ROOT, else ../web or ../../web
+// from the executable.
+std::string WebRoot(const std::string& given = "");
+
 // The usage text of both commands.
 extern const char* const kServeUsage;
 

@@ -339,10 +339,14 @@ json Hub::Handle(const std::string& method, const json& params,
   // its elements were being made, read them after their scope under GCC 12
   // (AddressSanitizer's stack-use-after-scope on a create without a command).
   if (method == "set_parameter") {
+    // Numbers, or a braced word's whole text (the shape editor's -desc).
     const json& element = params.at("element");
     const json& param = params.at("param");
-    const json& values = params.at("values");
-    json r = Call("edit", {{"element", element}, {"param", param}, {"values", values}});
+    const bool word = params.contains("text");
+    const json values = word ? json() : params.at("values");
+    json r =
+        Call("edit", word ? json{{"element", element}, {"param", param}, {"text", params["text"]}}
+                          : json{{"element", element}, {"param", param}, {"values", values}});
     text_ = r.value("text", text_);
     state_stale_ = true;
     Broadcast({{"event", "text"},
@@ -362,6 +366,7 @@ json Hub::Handle(const std::string& method, const json& params,
     json r = Call(method, {{key, arg}});
     json out = after_text_change(json::array());
     out["edits"] = r["edits"];
+    if (method == "delete") out["removed"] = r.value("removed", json::array());
     return out;
   }
   if (method == "update") {

@@ -350,10 +350,14 @@ class Slave {
   // columns counted in bytes) and the new text.
   json Edit(const json& params) {
     if (!session_) throw RpcError{kSceneError, "no scene is loaded"};
+    if (params.contains("element") && params["element"].is_string() && params.contains("param") &&
+        params["param"].is_string() && params.contains("text") && params["text"].is_string())
+      return Edited(session_->SetWord(params["element"], params["param"], params["text"]));
     if (!params.contains("element") || !params["element"].is_string() ||
         !params.contains("param") || !params["param"].is_string() || !params.contains("values") ||
         !params["values"].is_array())
-      throw RpcError{kInvalidParams, "invalid params: edit needs element, param and values"};
+      throw RpcError{kInvalidParams,
+                     "invalid params: edit needs element, param and values (or text)"};
     std::vector<double> values;
     for (const auto& v : params["values"]) {
       if (!v.is_number()) throw RpcError{kInvalidParams, "invalid params: values must be numbers"};
@@ -398,7 +402,11 @@ class Slave {
     text_ = session_->text();
     sampler_.reset();
     for (auto& [k, r2] : renditions_) r2.renderer.reset();
-    return {{"ok", true}, {"edits", edits}, {"text", text_}, {"units", "bytes"}};
+    return {{"ok", true},
+            {"edits", edits},
+            {"text", text_},
+            {"units", "bytes"},
+            {"removed", r.removed}};
   }
 
   json Simulate(const json& id) {
@@ -533,8 +541,20 @@ class Slave {
                             std::to_string(sampler_->t1())}};
     }
     if (line == "ping") return {{"reply", "pong"}};
-    throw RpcError{kInvalidParams,
-                   "unknown command '" + line + "' (known: handles on|off, info, ping)"};
+    // "player [RATE]": the meshes, poses and camera a page plays in WebGL.
+    if (line == "player" || line.rfind("player ", 0) == 0) {
+      if (!sampler_) throw RpcError{kSceneError, "not simulated"};
+      double rate = 0;
+      if (line.size() > 7) {
+        char* end = nullptr;
+        rate = std::strtod(line.c_str() + 7, &end);
+        if (!end || *end != '\0' || !(rate > 0) || rate > 1000)
+          throw RpcError{kInvalidParams, "player: the rate must be a number in (0, 1000]"};
+      }
+      return {{"reply", editor_rpc::PlayerData(*sampler_, view_, rate).dump()}};
+    }
+    throw RpcError{kInvalidParams, "unknown command '" + line +
+                                       "' (known: handles on|off, info, ping, player [RATE])"};
   }
 
   int in_, out_;

@@ -1,6 +1,7 @@
 // The editor's asgard-core methods (see editor_rpc.h).
 #include "core/app/editor_rpc.h"
 
+#include <algorithm>
 #include <cmath>
 
 #include "core/physics/trajectory.h"
@@ -150,19 +151,60 @@ json Views(const render::SceneSampler& sampler, const session::Session& session,
   return views;
 }
 
+// [x y z qx qy qz qw] of every body at time t, one list.
+json PoseFrame(const render::SceneSampler& sampler, double t) {
+  json frame = json::array();
+  for (const auto& pose : sampler.Poses(t)) {
+    const Eigen::Quaterniond q = pose.q.normalized();
+    for (double v : {pose.p.x(), pose.p.y(), pose.p.z(), q.x(), q.y(), q.z(), q.w()})
+      frame.push_back(Round(v));
+  }
+  return frame;
+}
+
+// [vx vy vz wx wy wz] of every body at time t (ω in world axes), one list:
+// differences of the poses over a step of 1e-5 of the run (central inside,
+// second order one-sided at the ends) — what a viewer needs to interpolate
+// between frames with cubic Hermite polynomials.
+json VelocityFrame(const render::SceneSampler& sampler, double t) {
+  const double t0 = sampler.t0(), t1 = sampler.t1();
+  const double h = std::max(1e-5 * (t1 - t0), 1e-7);
+  // Samples at t + k·h for three k, and the weights of the derivative.
+  double k[3] = {-1, 0, 1}, w[3] = {-0.5, 0, 0.5};
+  if (t - h < t0) k[0] = 0, k[1] = 1, k[2] = 2, w[0] = -1.5, w[1] = 2, w[2] = -0.5;
+  if (t + h > t1 && t - h >= t0) k[0] = -2, k[1] = -1, k[2] = 0, w[0] = 0.5, w[1] = -2, w[2] = 1.5;
+  std::vector<std::vector<render::Pose>> at;
+  for (double kk : k) at.push_back(sampler.Poses(std::clamp(t + kk * h, t0, t1)));
+  const std::vector<render::Pose> now = sampler.Poses(t);
+  json frame = json::array();
+  for (size_t b = 0; b < now.size(); ++b) {
+    Eigen::Vector3d v = Eigen::Vector3d::Zero();
+    Eigen::Vector4d dq = Eigen::Vector4d::Zero();
+    const Eigen::Quaterniond q = now[b].q.normalized();
+    for (int i = 0; i < 3; ++i) {
+      v += w[i] / h * at[i][b].p;
+      Eigen::Quaterniond qi = at[i][b].q.normalized();
+      if (qi.coeffs().dot(q.coeffs()) < 0) qi.coeffs() *= -1;
+      dq += w[i] / h * qi.coeffs();
+    }
+    // ω = 2 q̇ q*, in world axes.
+    Eigen::Quaterniond qdot;
+    qdot.coeffs() = dq;
+    const Eigen::Vector3d omega = 2 * (qdot * q.conjugate()).vec();
+    for (double x : {v.x(), v.y(), v.z(), omega.x(), omega.y(), omega.z()})
+      frame.push_back(Round(x));
+  }
+  return frame;
+}
+
 json Poses(const render::SceneSampler& sampler, const session::Session* session) {
   const std::vector<double> times = sampler.FrameTimes();
   json names = json::array();
   for (const auto& b : sampler.bodies()) names.push_back(b.name);
-  json frames = json::array(), forces = json::array();
+  json frames = json::array(), forces = json::array(), velocities = json::array();
   for (double t : times) {
-    json frame = json::array();
-    for (const auto& pose : sampler.Poses(t)) {
-      const Eigen::Quaterniond q = pose.q.normalized();
-      for (double v : {pose.p.x(), pose.p.y(), pose.p.z(), q.x(), q.y(), q.z(), q.w()})
-        frame.push_back(Round(v));
-    }
-    frames.push_back(std::move(frame));
+    frames.push_back(PoseFrame(sampler, t));
+    velocities.push_back(VelocityFrame(sampler, t));
     json values = json::array();
     for (const auto& f : sampler.ForceValues(t)) values.push_back(f ? Vec(*f) : json());
     forces.push_back(std::move(values));
@@ -191,6 +233,7 @@ json Poses(const render::SceneSampler& sampler, const session::Session* session)
           {"times", std::move(rounded)},
           {"bodies", std::move(names)},
           {"poses", std::move(frames)},
+          {"velocities", std::move(velocities)},
           {"forces", std::move(forces)},
           {"trajectories", std::move(trajectories)},
           {"framing",
@@ -214,6 +257,25 @@ std::optional<json> Dispatch(const std::string& method, const json& /*params*/,
   if (method == "poses")
     return sampler ? Poses(*sampler, session) : Refused("the scene has not been simulated");
   return std::nullopt;
+}
+
+json PlayerData(const render::SceneSampler& sampler, const render::ViewState& view, double rate) {
+  json data = Meshes(sampler);
+  const double t0 = sampler.t0(), t1 = std::max(sampler.t0(), sampler.t1());
+  rate = std::isfinite(rate) && rate > 0 ? rate : sampler.frame_rate();
+  const int count = static_cast<int>(
+      std::clamp(std::floor((t1 - t0) * rate + 1e-9) + 1, 1.0, double{kMaxPlayerFrames}));
+  const std::vector<double> times = render::SceneSampler::FrameTimes(t0, t1, count);
+  json frames = json::array();
+  for (double t : times) frames.push_back(PoseFrame(sampler, t));
+  const render::Camera c = render::MakeCamera(view, 1, 1);
+  data["times"] = times;
+  data["poses"] = std::move(frames);
+  data["camera"] = {{"eye", Vec(c.eye)},
+                    {"target", Vec(c.target)},
+                    {"up", Vec(c.up)},
+                    {"tan_half_fov", std::tan(c.fov_y / 2)}};
+  return data;
 }
 
 }  // namespace asgard::editor_rpc

@@ -14,6 +14,9 @@
 //                      intensity}]}
 //   poses {}        → {t0, t1, frame_rate, times: [...], bodies: [names],
 //                      poses: [[x y z qx qy qz qw per body] per frame],
+//                      velocities: [[vx vy vz wx wy wz per body] per frame]
+//                      (ω in world axes; differences of the poses over
+//                      1e-5 of the run),
 //                      forces: [[[fx fy fz] | null per scene force] per frame],
 //                      trajectories: [{name, values: [[x y z] per frame]}],
 //                      framing: {center, radius, eye_distance, tan_half_fov}
@@ -23,6 +26,12 @@
 //
 // meshes and poses need a successful simulate; before it they answer
 // {ok: false, error}.
+//
+// PlayerData is what an exported page needs to play the motion in WebGL
+// (the medium's "player" command, host-shim/html.cc): meshes' bodies and
+// lights as above, the poses at `rate` frames per second over the run (at
+// most kMaxPlayerFrames), and the camera `view` gives for a square picture
+// {eye, target, up, tan_half_fov}.
 #pragma once
 
 #include <nlohmann/json.hpp>
@@ -35,7 +44,8 @@ class Session;
 }
 namespace render {
 class SceneSampler;
-}
+struct ViewState;
+}  // namespace render
 }  // namespace asgard
 
 namespace asgard::editor_rpc {
@@ -45,5 +55,9 @@ namespace asgard::editor_rpc {
 std::optional<nlohmann::json> Dispatch(const std::string& method, const nlohmann::json& params,
                                        const session::Session* session,
                                        const render::SceneSampler* sampler);
+
+inline constexpr int kMaxPlayerFrames = 3000;
+nlohmann::json PlayerData(const render::SceneSampler& sampler, const render::ViewState& view,
+                          double rate);
 
 }  // namespace asgard::editor_rpc

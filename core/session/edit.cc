@@ -1,6 +1,7 @@
 // Graphical edits as text patches (seed 4.2.2): a parameter is editable iff
 // its element's command ran once and its word is a literal number or vector;
 // an edit rewrites only the characters of that literal that change.
+#include <algorithm>
 #include <charconv>
 #include <cmath>
 
@@ -60,6 +61,69 @@ const ElementRef* FindOrReport(const std::vector<ElementRef>& elements, const st
   const ElementRef* e = Find(elements, element);
   if (!e) result.error = "no element '" + element + "'";
   return e;
+}
+
+// Whether `x` names the body or trajectory `target`: a force, torque, link,
+// trajectory or view on that body, or a link or view along that trajectory.
+bool Names(const ElementRef& x, const ElementRef& target) {
+  using K = scene::ElementKind;
+  const std::string& name = target.base->name;
+  if (name.empty()) return false;
+  if (target.kind == K::kBody) {
+    switch (x.kind) {
+      case K::kForce:
+        return static_cast<const scene::Force*>(x.base)->body == name;
+      case K::kTorque:
+        return static_cast<const scene::Torque*>(x.base)->body == name;
+      case K::kLink: {
+        const auto* link = static_cast<const scene::Link*>(x.base);
+        return link->body1 == name || link->body2 == name;
+      }
+      case K::kTrajectory:
+        return static_cast<const scene::Trajectory*>(x.base)->body == name;
+      case K::kView:
+        return static_cast<const scene::View*>(x.base)->follow == name;
+      default:
+        return false;
+    }
+  }
+  if (target.kind == K::kTrajectory) {
+    if (x.kind == K::kLink) return static_cast<const scene::Link*>(x.base)->trajectory == name;
+    if (x.kind == K::kView) return static_cast<const scene::View*>(x.base)->trajectory == name;
+  }
+  return false;
+}
+
+// The edit removing a command and, when it stands alone on its lines,
+// those lines.
+TextEdit CommandSpan(const std::string& text, const scene::SourceSpan& command) {
+  int begin = command.begin, end = command.end;
+  int line_start = begin;
+  while (line_start > 0 && text[line_start - 1] != '\n') --line_start;
+  const size_t line_end = text.find('\n', end);
+  const bool alone =
+      text.find_first_not_of(" \t", line_start) == static_cast<size_t>(begin) &&
+      (line_end == std::string::npos || text.find_first_not_of(" \t;", end) >= line_end);
+  if (alone) {
+    begin = line_start;
+    end = line_end == std::string::npos ? static_cast<int>(text.size())
+                                        : static_cast<int>(line_end) + 1;
+  } else {
+    // One of several commands on its line: with the ';' that separates it
+    // from the next one (or, the last, from the one before) and the blanks.
+    const size_t after = text.find_first_not_of(" \t", end);
+    if (after != std::string::npos && text[after] == ';') {
+      end = static_cast<int>(std::min(text.find_first_not_of(" \t", after + 1), text.size()));
+    } else {
+      size_t before = static_cast<size_t>(begin);
+      while (before > 0 && (text[before - 1] == ' ' || text[before - 1] == '\t')) --before;
+      if (before > 0 && text[before - 1] == ';') begin = static_cast<int>(before - 1);
+    }
+  }
+  TextEdit edit;
+  edit.begin = begin;
+  edit.end = end;
+  return edit;
 }
 
 }  // namespace
@@ -175,6 +239,44 @@ EditResult Session::SetParameter(const std::string& element, const std::string& 
   return ApplyEdits(std::move(edits));
 }
 
+EditResult Session::SetWord(const std::string& element, const std::string& param,
+                            const std::string& text) {
+  EditResult result;
+  const auto elements = Elements(scene_);
+  const ElementRef* e = FindOrReport(elements, element, result);
+  if (!e) return result;
+  const scene::Word* w = e->base->option(param);
+  std::string reason = ReadOnlyReason(*e->base, nullptr);
+  if (reason.empty() && !w) reason = "it has no -" + param;
+  if (reason.empty() && !w->span.known()) reason = "its word could not be located in the text";
+  if (reason.empty() && text_[w->span.begin] != '{') reason = "its word is not a braced literal";
+  if (!reason.empty()) {
+    result.error = element + "." + param + " is read-only: " + reason;
+    return result;
+  }
+  // The new word must stay one braced word: balanced, unescaped braces.
+  int depth = 0;
+  for (size_t i = 0; i < text.size() && depth >= 0; ++i) {
+    if (text[i] == '\\')
+      ++i;
+    else if (text[i] == '{')
+      ++depth;
+    else if (text[i] == '}')
+      --depth;
+  }
+  if (depth != 0 || (!text.empty() && text.back() == '\\')) {
+    result.error = "the new -" + param + " of " + element + " has unbalanced braces";
+    return result;
+  }
+  const TextEdit edit = Minimal(text_, w->span.begin, w->span.end, "{" + text + "}");
+  if (edit.begin == edit.end && edit.text.empty()) {  // the same word: no undo step
+    result.ok = true;
+    return result;
+  }
+  pending_key_ = element + '\0' + param;
+  return ApplyEdits({edit});
+}
+
 EditResult Session::CreateElement(const std::string& command) {
   EditResult result;
   std::string cmd = command;
@@ -210,28 +312,38 @@ EditResult Session::DeleteElement(const std::string& element) {
   const auto elements = Elements(scene_);
   const ElementRef* e = FindOrReport(elements, element, result);
   if (!e) return result;
-  const std::string reason = ReadOnlyReason(*e->base, nullptr);
-  if (!reason.empty()) {
-    result.error = element + " cannot be deleted here: " + reason;
-    return result;
+  // The element and, transitively, every element that names a body or
+  // trajectory being deleted, so that nothing is left dangling.
+  std::vector<const ElementRef*> doomed = {e};
+  for (size_t i = 0; i < doomed.size(); ++i)
+    for (const ElementRef& x : elements)
+      if (std::find(doomed.begin(), doomed.end(), &x) == doomed.end() && Names(x, *doomed[i]))
+        doomed.push_back(&x);
+  std::vector<TextEdit> edits;
+  for (const ElementRef* d : doomed) {
+    const std::string reason = ReadOnlyReason(*d->base, nullptr);
+    if (!reason.empty()) {
+      result.error = d == e ? element + " cannot be deleted here: " + reason
+                            : element + " cannot be deleted here: " + d->key +
+                                  ", which names it, is " + reason + " (edit the text)";
+      return result;
+    }
+    edits.push_back(CommandSpan(text_, d->base->command));
+    if (d != e) result.removed.push_back(d->key);
   }
-  // The command and, when it stands alone on its lines, those lines.
-  int begin = e->base->command.begin, end = e->base->command.end;
-  int line_start = begin;
-  while (line_start > 0 && text_[line_start - 1] != '\n') --line_start;
-  size_t line_end = text_.find('\n', end);
-  const bool alone =
-      text_.find_first_not_of(" \t", line_start) == static_cast<size_t>(begin) &&
-      (line_end == std::string::npos || text_.find_first_not_of(" \t;", end) >= line_end);
-  if (alone) {
-    begin = line_start;
-    end = line_end == std::string::npos ? static_cast<int>(text_.size())
-                                        : static_cast<int>(line_end) + 1;
+  // Spans of commands on one line may touch; never overlap them.
+  std::sort(edits.begin(), edits.end(),
+            [](const TextEdit& a, const TextEdit& b) { return a.begin < b.begin; });
+  std::vector<TextEdit> merged;
+  for (const TextEdit& x : edits) {
+    if (!merged.empty() && x.begin < merged.back().end)
+      merged.back().end = std::max(merged.back().end, x.end);
+    else
+      merged.push_back(x);
   }
-  TextEdit edit;
-  edit.begin = begin;
-  edit.end = end;
-  return ApplyEdits({edit});
+  EditResult applied = ApplyEdits(std::move(merged));
+  applied.removed = std::move(result.removed);
+  return applied;
 }
 
 EditResult Session::ApplyEdits(std::vector<TextEdit> edits) {

@@ -102,6 +102,8 @@ struct EditResult {
   bool ok = false;
   std::string error;
   std::vector<TextEdit> edits;
+  // DeleteElement: the other elements removed with it (their keys).
+  std::vector<std::string> removed;
 };
 
 class Session {
@@ -121,8 +123,16 @@ class Session {
   // "x", "points" ...).  Values are numbers (a vector's components in order).
   EditResult SetParameter(const std::string& element, const std::string& param,
                           const std::vector<double>& values);
+  // A braced word replaced whole (a shape_set's -desc from the shape
+  // editor): `text` becomes `{text}`; refused unless the word is braced
+  // and `text` keeps it one word.  Consecutive calls for one parameter are
+  // one undo step, as a drag's SetParameter calls are.
+  EditResult SetWord(const std::string& element, const std::string& param, const std::string& text);
   // Inserts a well-formatted command after the last command of its kind (or
-  // at the end), or deletes an element's command.
+  // at the end), or deletes an element's command.  Deleting a body also
+  // deletes the forces, torques, links, trajectories and views that name it
+  // (and a trajectory the links and views along it), all as one undo step;
+  // it is refused when one of them cannot be deleted (made in a loop ...).
   EditResult CreateElement(const std::string& command);
   EditResult DeleteElement(const std::string& element);
   std::vector<Parameter> Parameters() const;

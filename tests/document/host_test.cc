@@ -7,12 +7,15 @@
 #include <stdlib.h>
 
 #include <chrono>
+#include <cstring>
+#include <nlohmann/json.hpp>
 #include <random>
 
 #include "formats/document/document.h"
 #include "formats/document/file.h"
 #include "formats/document/xml.h"
 #include "host-shim/host_document.h"
+#include "host-shim/html.h"
 #include "host-shim/medium.h"
 #include "tests/common/samples.h"
 
@@ -433,6 +436,92 @@ TEST(HostDocument, PosterFramesAreStoredAndReadBack) {
   // Without the POSTER element the document is the memo again, byte for byte.
   const size_t a = with_poster.find("\n<POSTER>"), b = with_poster.find("</POSTER>") + 9;
   EXPECT_EQ(with_poster.substr(0, a) + with_poster.substr(b), bytes);
+}
+
+// Little-endian float32 and uint16 arrays from the player's base64.
+std::vector<float> Floats(const std::string& base64) {
+  const auto bytes = document::Base64Decode(base64);
+  std::vector<float> out(bytes ? bytes->size() / 4 : 0);
+  if (bytes) std::memcpy(out.data(), bytes->data(), out.size() * 4);
+  return out;
+}
+
+TEST(HostDocument, ThePlayerDataIsTheSlavesMotionPacked) {
+  auto parsed = document::Parse(ReadSample("memo.ens"));
+  ASSERT_TRUE(parsed.ok());
+  HostDocument doc(*parsed.document, Registry(), Opts("memo.ens", kCore));
+  Embedded& item = doc.items()[0];
+  ASSERT_TRUE(doc.Simulate(item)) << item.message;
+  std::string reply, error;
+  ASSERT_TRUE(doc.Command(item, "player 30", &reply)) << reply;
+  const std::string packed = PlayerJson(reply, &error);
+  ASSERT_FALSE(packed.empty()) << error;
+  const auto data = nlohmann::json::parse(packed);
+  // 0 .. 3 s at 30 frames a second; both balls move, so both have a track.
+  ASSERT_EQ(data["n"], 91);
+  EXPECT_EQ(data["t0"], 0.0);
+  EXPECT_EQ(data["t1"], 3.0);
+  ASSERT_EQ(data["bodies"].size(), 2u);
+  EXPECT_EQ(data["bodies"][0]["name"], "b2");
+  EXPECT_EQ(data["bodies"][0]["track"], 0);
+  EXPECT_EQ(data["bodies"][1]["track"], 1);
+  EXPECT_EQ(data["bodies"][1]["pieces"][0]["sphere"], nlohmann::json({0.0, 0.0, 0.0, 0.5}));
+  // No force acts: b2 starts at (-1 0 0) with velocity (1 0 0), b3 at
+  // (1 0 0) with (0 1 0), and neither turns; float32 keeps 7 digits.
+  const std::vector<float> poses = Floats(data["poses"]);
+  ASSERT_EQ(poses.size(), 91u * 2 * 7);
+  for (int f = 0; f < 91; ++f) {
+    const double t = f / 30.0;
+    const float* b2 = &poses[(f * 2 + 0) * 7];
+    const float* b3 = &poses[(f * 2 + 1) * 7];
+    EXPECT_NEAR(b2[0], -1 + t, 1e-5) << "t = " << t;
+    EXPECT_NEAR(b2[1], 0, 1e-5);
+    EXPECT_NEAR(b3[0], 1, 1e-5);
+    EXPECT_NEAR(b3[1], t, 1e-5) << "t = " << t;
+    EXPECT_NEAR(b3[6], 1, 1e-6);  // w of the identity
+  }
+  EXPECT_TRUE(data["camera"].contains("eye") && data["camera"].contains("tan_half_fov"));
+  // The rate must be a number in (0, 1000].
+  EXPECT_FALSE(doc.Command(item, "player fast", &reply));
+}
+
+TEST(Html, PlayerJsonPacksHullsKeepsStillBodiesToOnePoseAndRefusesBadData) {
+  const std::string reply = R"({"bodies":[
+    {"name":"floor</script>","pieces":[{"sphere":false,"color":[1,0,0],
+      "vertices":[0,0,0, 1,0,0, 0,1,0, 0,0,1],"triangles":[0,2,1, 0,1,3, 0,3,2, 1,2,3]}]},
+    {"name":"ball","pieces":[{"sphere":true,"center":[0,0,0],"radius":0.5,"color":[0,0,1]}]}],
+    "lights":[],"times":[0,0.5,1],
+    "poses":[[0,0,0,0,0,0,1, 0,0,0,0,0,0,1],[0,0,0,0,0,0,1, 0,1,0,0,0,0,1],[0,0,0,0,0,0,1, 0,2,0,0,0,0,1]],
+    "camera":{"eye":[0,0,10],"target":[0,0,0],"up":[0,1,0],"tan_half_fov":0.3}})";
+  std::string error;
+  const std::string packed = PlayerJson(reply, &error);
+  ASSERT_FALSE(packed.empty()) << error;
+  EXPECT_EQ(packed.find("</"), std::string::npos) << "no </ inside a script element";
+  const auto data = nlohmann::json::parse(packed);
+  EXPECT_EQ(data["bodies"][0]["name"], "floor</script>");
+  // The still floor: one pose, no track; the ball: the only track.
+  EXPECT_FALSE(data["bodies"][0].contains("track"));
+  EXPECT_EQ(data["bodies"][0]["pose"], nlohmann::json({0, 0, 0, 0, 0, 0, 1}));
+  EXPECT_EQ(data["bodies"][1]["track"], 0);
+  EXPECT_EQ(Floats(data["poses"]),
+            (std::vector<float>{0, 0, 0, 0, 0, 0, 1, 0, 1, 0, 0, 0, 0, 1, 0, 2, 0, 0, 0, 0, 1}));
+  const auto& hull = data["bodies"][0]["pieces"][0];
+  EXPECT_EQ(Floats(hull["v"]), (std::vector<float>{0, 0, 0, 1, 0, 0, 0, 1, 0, 0, 0, 1}));
+  const auto indices = document::Base64Decode(hull["i"].get<std::string>());
+  ASSERT_TRUE(indices && indices->size() == 24u);  // 12 uint16
+  EXPECT_EQ(static_cast<uint8_t>((*indices)[2]), 2);
+  EXPECT_FALSE(hull.contains("i32"));
+  // Bad data: a sentence, never a crash.
+  for (const std::string& bad :
+       {std::string("not json"), std::string(R"({"times":[0,1]})"),
+        std::string(R"({"bodies":[],"times":[0,0.1,1],"poses":[[],[],[]],"camera":{}})"),
+        std::string(R"({"bodies":[{"name":"x","pieces":[{"sphere":false,"color":[1,1,1],)"
+                    R"("vertices":[0,0,0],"triangles":[0,0,5]}]}],"times":[0],)"
+                    R"("poses":[[0,0,0,0,0,0,1]],"camera":{}})")}) {
+    error.clear();
+    EXPECT_TRUE(PlayerJson(bad, &error).empty()) << bad;
+    EXPECT_NE(error.find("the player data"), std::string::npos) << error;
+  }
 }
 
 }  // namespace

@@ -448,7 +448,7 @@ std::vector<ProtocolCase> ProtocolCatalogue() {
       {"CommandLineThatIsANumber", Req(14, "command", R"({"line":42})"), "14",
        "invalid params: 'line' must be a string"},
       {"UnknownCommand", Req(15, "command", R"({"line":"format c:"})"), "15",
-       "unknown command 'format c:' (known: handles on|off, info, ping)"},
+       "unknown command 'format c:' (known: handles on|off, info, ping, player [RATE])"},
       {"OpenWithoutRendition", Req(16, "open_rendition", R"({"width":16,"height":16,"offset":0})"),
        "16", "invalid params: 'rendition' is missing"},
       {"OpenWithAHugeWidth",

@@ -81,6 +81,34 @@ TEST(EditorRpc, MeshesGiveCentroidsAndPosesGiveEachForceAtEachFrame) {
   }
 }
 
+TEST(EditorRpc, PosesCarryEachBodysVelocityAndAngularVelocityAtEachFrame) {
+  // Thrown under gravity and spinning: v = (1, 2 − 10 t, 0), ω = (0, 0, 3)
+  // (a ball: no torque, ω constant).
+  const std::string text =
+      "simulator -finish 1 -step 0.1\n"
+      "shape_set ball -desc {-sub {-pos {0 0 0} -sphere 0.5}}\n"
+      "body s -shape ball -init_dpos {1 2 0} -init_drot {0 0 3}\n"
+      "force -body s -gravitational 1 -x 0 -y -10 -z 0\n";
+  pipeline::Run run = pipeline::Simulate(text);
+  ASSERT_TRUE(run.ok) << run.solver_error;
+  render::SceneSampler sampler(run.scene, *run.equations, *run.simulation);
+  const json poses = *Dispatch("poses", json::object(), nullptr, &sampler);
+  const auto& times = poses["times"];
+  ASSERT_EQ(poses["velocities"].size(), times.size());
+  ASSERT_GT(times.size(), 5u);
+  for (size_t k = 0; k < times.size(); ++k) {
+    const double t = times[k].get<double>();
+    const json& v = poses["velocities"][k];
+    ASSERT_EQ(v.size(), 6u);
+    EXPECT_NEAR(v[0].get<double>(), 1.0, 1e-4) << "t = " << t;
+    EXPECT_NEAR(v[1].get<double>(), 2.0 - 10.0 * t, 1e-4) << "t = " << t;
+    EXPECT_NEAR(v[2].get<double>(), 0.0, 1e-4);
+    EXPECT_NEAR(v[3].get<double>(), 0.0, 1e-4);
+    EXPECT_NEAR(v[4].get<double>(), 0.0, 1e-4);
+    EXPECT_NEAR(v[5].get<double>(), 3.0, 1e-4) << "t = " << t;
+  }
+}
+
 TEST(EditorRpc, PosesSampleEachTrajectoryAtEachFrame) {
   // Two knots: a straight line at constant speed, extrapolated linearly
   // beyond t = 0.5 (the curve the viewer draws for points it cannot read).

@@ -4,6 +4,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cstring>
 #include <map>
 #include <set>
@@ -438,6 +439,79 @@ TEST(CreateDelete, CommandsAreInsertedAfterTheirKindAndRemovedWithTheirLine) {
                           "force -body a -x 1 -y 0 -z 0\n"
                           "simulator -finish 1\n");
   EXPECT_FALSE(s.DeleteElement("force#7").ok);
+}
+
+TEST(CreateDelete, DeletingABodyDeletesWhatNamesItAsOneUndoStep) {
+  const std::string base = std::string(kBall) +
+                           "body a -shape ball\n"
+                           "body b -shape ball -init_pos {2 0 0}\n"
+                           "trajectory tr -points {{0 0 0 0} {1 0 1 0}} -body a -state pos\n"
+                           "trajectory free -points {{0 3 0 0} {1 3 1 0}}\n"
+                           "link -body1 a -offset1 {0.5 0 0} -body2 b -tightness 10\n"
+                           "link -body1 b -trajectory tr -tightness 10\n"
+                           "link -body1 b -trajectory free -tightness 10\n"
+                           "force -body a -x 0 -y -1 -z 0; force -body b -x 0 -y -1 -z 0\n"
+                           "torque -body a -x 0 -y 0 -z 1\n"
+                           "view chase -follow a\n"
+                           "view along -trajectory tr\n"
+                           "view side -rot {0 1.5 0}\n"
+                           "simulator -finish 1\n";
+  Session s(base);
+  ASSERT_FALSE(s.scene().has_errors());
+  const EditResult r = s.DeleteElement("a");
+  ASSERT_TRUE(r.ok) << r.error;
+  // The body, and what names it: its force, torque, link, trajectory and
+  // view, and through the trajectory the link and view along it.
+  EXPECT_EQ(s.text(), std::string(kBall) +
+                          "body b -shape ball -init_pos {2 0 0}\n"
+                          "trajectory free -points {{0 3 0 0} {1 3 1 0}}\n"
+                          "link -body1 b -trajectory free -tightness 10\n"
+                          "force -body b -x 0 -y -1 -z 0\n"
+                          "view side -rot {0 1.5 0}\n"
+                          "simulator -finish 1\n");
+  EXPECT_FALSE(s.scene().has_errors());
+  std::vector<std::string> removed = r.removed;
+  std::sort(removed.begin(), removed.end());
+  EXPECT_EQ(removed, (std::vector<std::string>{"along", "chase", "force#0", "link#0", "link#1",
+                                               "torque#0", "tr"}));
+  // One undo step brings all of it back.
+  ASSERT_TRUE(s.Undo());
+  EXPECT_EQ(s.text(), base);
+  // Deleting a trajectory takes the link and view along it.
+  ASSERT_TRUE(s.DeleteElement("free").ok);
+  EXPECT_EQ(s.text().find("free"), std::string::npos);
+  ASSERT_TRUE(s.Undo());
+  EXPECT_EQ(s.text(), base);
+  // Refused (nothing changes) when something that names the body cannot be
+  // deleted here.
+  Session looped(std::string(kBall) +
+                 "body a -shape ball\n"
+                 "foreach y {-1 -2} { force -body a -x 0 -y $y -z 0 }\n");
+  const std::string before = looped.text();
+  const EditResult refused = looped.DeleteElement("a");
+  EXPECT_FALSE(refused.ok);
+  EXPECT_NE(refused.error.find("made in a loop"), std::string::npos) << refused.error;
+  EXPECT_EQ(looped.text(), before);
+}
+
+TEST(CreateDelete, ABracedWordIsReplacedWholeAndADragOfItIsOneUndoStep) {
+  const std::string base = "shape_set s -desc {-sub {-sphere 0.5}}\nbody a -shape s\n";
+  Session s(base);
+  ASSERT_TRUE(s.SetWord("s", "desc", "-sub {-sphere 0.7}").ok);
+  ASSERT_TRUE(s.SetWord("s", "desc", "-sub {-sphere 0.9}").ok);
+  EXPECT_EQ(s.text(), "shape_set s -desc {-sub {-sphere 0.9}}\nbody a -shape s\n");
+  EXPECT_DOUBLE_EQ(s.scene().shape_sets[0].pieces[0].radius, 0.9);
+  ASSERT_TRUE(s.SetWord("s", "desc", "-sub {-sphere 0.9}").ok);  // the same word: no step
+  ASSERT_TRUE(s.Undo());
+  EXPECT_EQ(s.text(), base);
+  // Unbalanced braces would end the word early: refused, nothing changes.
+  const EditResult bad = s.SetWord("s", "desc", "-sub {-sphere 1} }");
+  EXPECT_FALSE(bad.ok);
+  EXPECT_NE(bad.error.find("unbalanced"), std::string::npos) << bad.error;
+  EXPECT_EQ(s.text(), base);
+  // A word that is not braced (a variable) is read-only.
+  Session v("set d {-sub {-sphere 0.5}}\nshape_set s -desc $d\n");
+  EXPECT_FALSE(v.SetWord("s", "desc", "-sub {-sphere 1}").ok);
 }
 
 TEST(Errors, AScriptWithErrorsStillAppliesItsValidPart) {

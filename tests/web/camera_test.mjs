@@ -7,8 +7,9 @@
 // put while the scene turns); the scene's views (one following the ball,
 // whose centre the core computes from the motion, one from the side) and
 // its red point light; torque handles; the Create menu's torque, light,
-// view (of the camera as it is) and trajectory, and Delete.  Screenshots go
-// to OUT_DIR.
+// view (of the camera as it is) and trajectory, and Delete; the handles of
+// a view's -center, -pos and -rot, and 'z'/'x' pushing a dragged handle in
+// depth.  Screenshots go to OUT_DIR.
 import { join } from 'node:path';
 import { browserTest, dragHandle, openEditor, sleep, waitFor } from './common.mjs';
 
@@ -236,5 +237,67 @@ await browserTest(asgard, scene, 'camera', async ({ check, url, context }) => {
   await waitFor(() => page.evaluate((k) => window.asgard.stateCount > k, n), 'the state after Delete');
   check(!(await lines()).some((l) => l.startsWith('lightsource')) &&
     await waitFor(() => page.evaluate(() => window.asgard.graphical.defaultLights.visible), 'default lights'), 'Delete removes its command, and the default lights are back');
+
+  // View handles (seed 4.1.7): `view side`'s -center, -pos and -rot dragged
+  // in the viewer; the core's camera for the view then agrees with them.
+  await page.check('#toggles input[data-kind=views]');
+  await page.click('#fit');
+  const vh = (id) => page.evaluate((i) => window.asgard.graphical.handleList().find((h) => h.id === i), id);
+  const sideCamera = () => page.evaluate(() => window.asgard.graphical.poses.views.find((v) => v.name === 'side').cameras[0]);
+  const sideLine = async () => (await lines()).find((l) => l.startsWith('view side '));
+  const chase = await vh('chase.center');
+  check(!!chase && !chase.editable && /-follow runner moves it/.test(chase.reason), `chase's -center is read-only: "${chase && chase.reason}"`);
+  const spokeLength = await page.evaluate(() => window.asgard.graphical.radius * 0.3);
+  let [eye, target, up] = await sideCamera();
+  let [hc, hp, hr] = await Promise.all(['side.center', 'side.pos', 'side.rot'].map(vh));
+  const sub = (a, b) => a.map((v, k) => v - b[k]);
+  check(dist(hc.world, target) < 1e-6, "side's -center ball is at the point its camera looks at (-pos is zero)");
+  check(angle(sub(hr.world, target), sub(eye, target)) < 1e-6 && Math.abs(dist(hr.world, target) - spokeLength) < 1e-6, 'its -rot knob is on the line toward its eye');
+  check(angle(sub(hp.world, target), up) < 1e-6, 'its -pos knob above that point along its up');
+  const viewLiterals = await page.evaluate(() => [...document.querySelectorAll('.cm-literal-view')].map((e) => e.textContent));
+  check(viewLiterals.includes('{0 1.5707963267948966 0}'), `the language viewer highlights the views' literals (${viewLiterals.join(', ')})`);
+  await page.screenshot({ path: join(outDir, '8-view-handles.png') });
+
+  // -center: dragged, with 'z' pushing it away three times and 'x' pulling
+  // it back once, while the pointer stays.
+  const step = await page.evaluate(() => window.asgard.graphical.depthStep());
+  await page.mouse.move(hc.x, hc.y);
+  await page.mouse.down();
+  for (let i = 1; i <= 4; ++i) { await page.mouse.move(hc.x + 10 * i, hc.y); await sleep(30); }
+  const c1 = (await vh('side.center')).value;
+  const sight = (await cameraState(page)).dir;
+  for (const key of ['z', 'z', 'z']) { await page.keyboard.press(key); await sleep(30); }
+  const c3 = (await vh('side.center')).value, at3 = await vh('side.center');
+  await page.keyboard.press('x');
+  const c2 = (await vh('side.center')).value;
+  const n0 = await page.evaluate(() => window.asgard.stateCount);
+  await page.mouse.up();
+  await waitFor(() => page.evaluate((k) => window.asgard.stateCount > k, n0), 'the state after the drag');
+  check(Math.abs(dot(sub(c3, c1), sight) - 3 * step) < 3e-3, `'z' three times pushes -center ${dot(sub(c3, c1), sight).toFixed(3)} deeper (3 × ${step.toFixed(3)})`);
+  check(Math.hypot(at3.x - (hc.x + 40), at3.y - hc.y) < 1, 'and the ball stays under the pointer');
+  check(Math.abs(dot(sub(c3, c2), sight) - step) < 3e-3, "'x' pulls it one step back");
+  const centerText = /-center \{([^}]*)\}/.exec((await sideLine()) || '');
+  check(!!centerText && centerText[1].split(' ').map(Number).every((v, k) => Math.abs(v - c2[k]) < 1e-9), `the text says -center {${centerText && centerText[1]}}`);
+  check(await waitFor(async () => { [eye, target, up] = await sideCamera(); return dist(target, c2) < 1e-6; }, 'the core camera at the new centre'),
+    'the core\'s camera for side now looks at the new centre');
+
+  // -rot: the knob dragged up; the core's eye is then along the new spoke.
+  hr = await vh('side.rot');
+  await dragHandle(page, 'side.rot', 0, -50);
+  hr = await vh('side.rot');
+  const rotText = /-rot \{([^}]*)\}/.exec((await sideLine()) || '');
+  check(!!rotText && rotText[1] !== '0 1.5707963267948966 0', `the drag rewrites -rot {${rotText && rotText[1]}}`);
+  check(await waitFor(async () => { [eye, target, up] = await sideCamera(); return angle(sub(hr.world, target), sub(eye, target)) < 2e-3; }, 'the core eye along the knob'),
+    `the core's eye is along the dragged knob (${angle(sub(hr.world, target), sub(eye, target)).toExponential(2)} rad)`);
+
+  // -pos: the knob dragged sideways; the core looks at the point under it.
+  hp = await vh('side.pos');
+  await dragHandle(page, 'side.pos', -40, 0);
+  hp = await vh('side.pos');
+  const posText = /-pos \{([^}]*)\}/.exec((await sideLine()) || '');
+  check(!!posText, `the drag appends -pos {${posText && posText[1]}}`);
+  check(await waitFor(async () => { [eye, target, up] = await sideCamera(); return dist(hp.world, target.map((v, k) => v + spokeLength * up[k])) < 2e-3; }, 'the core target under the knob'),
+    'the core\'s camera looks at the point below the dragged -pos knob');
+  await page.screenshot({ path: join(outDir, '9-view-dragged.png') });
   check(errors.length === 0, `no page errors ${errors.join('; ')}`);
 });

@@ -4,6 +4,7 @@
 // on the selected body, "Link" a link made by clicking two bodies.  Each new
 // element appears as one well-formatted command in every language viewer and
 // in both graphical viewers, and the session's Undo removes them again.
+// Delete of b1 removes the force and links that name it too, in one undo step.
 // Screenshots go to OUT_DIR.
 import { join } from 'node:path';
 import { browserTest, sleep, waitFor } from './common.mjs';
@@ -71,6 +72,18 @@ await browserTest(asgard, scene, 'create', async ({ check, url, context }) => {
     return d !== null && Math.abs(d + 0.5) < 1e-3;
   }, 'the force in the motion');
   check(fall, 'the re-simulated box falls 0.5 in the first second under the new force');
+  // Between frames the pose is the cubic Hermite interpolant of the frames'
+  // poses and velocities: exact for this parabola (y0 − t²/2), where the
+  // linear mix of the two frames is off by (Δt/2)²/2.
+  const mid = await b.evaluate(() => {
+    const g = window.asgard.graphical, times = g.poses.times, i = times.findIndex((t) => t >= 0.5);
+    const t = (times[i] + times[i + 1]) / 2, y0 = g.bodyPosition('body1', 0)[1];
+    const linear = (g.bodyPosition('body1', i)[1] + g.bodyPosition('body1', i + 1)[1]) / 2;
+    g.seek(t);
+    return { t, dt: times[i + 1] - times[i], y: g.bodies.get('body1').group.position.y, exact: y0 - (t * t) / 2, linear };
+  });
+  check(Math.abs(mid.y - mid.exact) < 1e-5 && Math.abs(mid.linear - mid.exact) > 0.9 * (mid.dt * mid.dt) / 8,
+    `at t = ${mid.t.toFixed(4)}, between frames, the box is drawn at y = ${mid.y.toFixed(6)}, the exact ${mid.exact.toFixed(6)} (linear: ${mid.linear.toFixed(6)})`);
   await a.screenshot({ path: join(outDir, '2-new-force.png') });
 
   // Link: two clicks, on b3's ball and on the box (handles are not picked
@@ -110,5 +123,28 @@ await browserTest(asgard, scene, 'create', async ({ check, url, context }) => {
     'and the body from the other tab\'s picture');
   check((await texts(pages)).every((t) => t === (lines.filter((l) => !bodyLine.test(l)).join('\n'))), 'the text is the original again');
   await b.screenshot({ path: join(outDir, '5-undone.png') });
+
+  // Delete b1: the force on it and both links that name it go too, in
+  // every view, as one undo step.
+  const original = (await texts([a]))[0];
+  const namesB1 = (l) => /^body b1 |^link -body1 b1 |-body2 b1 |^force .*-body b1 /.test(l);
+  check(original.split('\n').filter(namesB1).length === 4, 'the pendulum has b1, its force and two links naming it');
+  const hb1 = await a.evaluate(() => window.asgard.graphical.handleScreenPos('b1'));
+  await a.mouse.click(hb1.x, hb1.y);
+  check(await waitFor(() => a.evaluate(() => document.getElementById('selection').textContent === 'selected: b1'), 'b1 selected'), 'clicking b1 selects it');
+  await sleep(300);
+  await a.click('#delete-element');
+  const without = original.split('\n').filter((l) => !namesB1(l)).join('\n');
+  check(await waitFor(() => everyText(pages, (t) => t === without), 'b1 deleted everywhere'),
+    'Delete removes b1, its force and both links from every language viewer');
+  const listed = await waitFor(() => a.evaluate(() => /deleted b1 and what named it: link#0, link#1, force#0/.test(document.getElementById('status').textContent)), 'the status');
+  check(listed, `the status lists them: "${await a.evaluate(() => document.getElementById('status').textContent)}"`);
+  check(await waitFor(() => b.evaluate(() => !window.asgard.graphical.bodyNames().includes('b1') && window.asgard.graphical.linkLines.children.length === 0), 'b1 gone'),
+    'the other tab no longer draws b1 or any link');
+  check(await a.evaluate(() => window.asgard.state.diagnostics.filter((d) => d.severity === 'error').length === 0), 'the scene left has no errors');
+  await b.screenshot({ path: join(outDir, '6-deleted-b1.png') });
+  await a.click('#undo');
+  check(await waitFor(() => everyText(pages, (t) => t === original), 'undo delete'), 'one Undo brings b1, its force and links back everywhere');
+  check(await waitFor(() => b.evaluate(() => window.asgard.graphical.bodyNames().includes('b1')), 'b1 back'), 'and b1 is drawn again');
   check(errors.length === 0, `no script errors in the pages ${errors.join('; ')}`);
 });

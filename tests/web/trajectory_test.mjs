@@ -169,5 +169,26 @@ await browserTest(asgard, scene, 'trajectory', async ({ check, url, context }) =
   await waitFor(() => page.evaluate((n) => window.asgard.stateCount > n, count), 'the state after Delete point');
   k = knotsOf(await text(page));
   check(k && k.length === 5 && !k.some((q) => Math.abs(q[0] - 1.8) < 1e-9), `Delete point removes it (${k && k.map((q) => q[0]).join(', ')})`);
+
+  // The same times as marks on the header's time slider: one per point,
+  // where the slider shows that time; point 4's dragged 20 px left.
+  const marks = () => page.evaluate(() => {
+    const s = document.getElementById('time').getBoundingClientRect(), g = window.asgard.graphical;
+    return { slider: { left: s.left, width: s.width }, t0: g.poses.t0, t1: g.poses.t1,
+      marks: [...document.querySelectorAll('#time-marks .time-mark')].map((m) => { const r = m.getBoundingClientRect(); return { x: r.left + r.width / 2, y: r.top + r.height / 2, knot: Number(m.dataset.knot) }; }) };
+  });
+  let sm = await marks();
+  k = knotsOf(await text(page));
+  const xOf = (t) => sm.slider.left + 8 + ((t - sm.t0) / (sm.t1 - sm.t0)) * (sm.slider.width - 16);
+  check(sm.marks.length === 5 && sm.marks.every((m) => Math.abs(m.x - xOf(k[m.knot][0])) < 1),
+    `the header's slider has a mark at each of the 5 points' times (${sm.marks.map((m) => m.x.toFixed(0)).join(', ')} px)`);
+  const t4 = k[3][0], mark4 = sm.marks.find((m) => m.knot === 3);
+  await dragBy(mark4, -20, 0);
+  k = knotsOf(await text(page));
+  const wantT4 = t4 - (20 * (sm.t1 - sm.t0)) / (sm.slider.width - 16);
+  check(k && Math.abs(k[3][0] - wantT4) < 2e-3 && k[3][1] === 1, `dragging its mark 20 px left moves point 4 to t = ${k && k[3][0]} (≈ ${wantT4.toFixed(3)}), its position kept`);
+  sm = await marks();
+  check(Math.abs(sm.marks.find((m) => m.knot === 3).x - xOf(k[3][0])) < 1, 'and the mark follows it');
+  await page.screenshot({ path: join(outDir, '6-slider-marks.png') });
   check(errors.length === 0, `no script errors in the page ${errors.join('; ')}`);
 });

@@ -16,6 +16,30 @@ import { TrajectoryCurve, knotsText, parseKnots } from './trajectory.js';
 
 const ZERO = [0, 0, 0];
 
+// A body's pose between two frames by cubic Hermite interpolation of the
+// poses [x y z qx qy qz qw] and velocities [vx vy vz wx wy wz] (ω in world
+// axes) at both ends, `dt` apart, at fraction s: positions exactly, the
+// quaternion's components with q̇ = ½ (ω, 0) ⊗ q, then normalized.  Set on
+// `object` (its position and quaternion).
+export function hermitePose(pa, va, pb, vb, dt, s, object) {
+  const s2 = s * s, s3 = s2 * s;
+  const h00 = 2 * s3 - 3 * s2 + 1, h10 = s3 - 2 * s2 + s, h01 = -2 * s3 + 3 * s2, h11 = s3 - s2;
+  const mix = (a, da, b, db) => h00 * a + h10 * dt * da + h01 * b + h11 * dt * db;
+  object.position.set(...[0, 1, 2].map((k) => mix(pa[k], va[k], pb[k], vb[k])));
+  const qdot = (q, w) => [  // ½ (ω, 0) ⊗ q for q = [x y z w]
+    0.5 * (q[3] * w[0] + w[1] * q[2] - w[2] * q[1]),
+    0.5 * (q[3] * w[1] + w[2] * q[0] - w[0] * q[2]),
+    0.5 * (q[3] * w[2] + w[0] * q[1] - w[1] * q[0]),
+    -0.5 * (w[0] * q[0] + w[1] * q[1] + w[2] * q[2])];
+  const qa = pa.slice(3, 7);
+  let qb = pb.slice(3, 7);
+  if (qa.reduce((acc, v, k) => acc + v * qb[k], 0) < 0) qb = qb.map((v) => -v);
+  const da = qdot(qa, va.slice(3, 6)), db = qdot(qb, vb.slice(3, 6));
+  const q = [0, 1, 2, 3].map((k) => mix(qa[k], da[k], qb[k], db[k]));
+  const n = Math.hypot(...q) || 1;
+  object.quaternion.set(q[0] / n, q[1] / n, q[2] / n, q[3] / n);
+}
+
 export class GraphicalViewer {
   constructor(canvas, ui) {
     this.canvas = canvas;
@@ -52,7 +76,7 @@ export class GraphicalViewer {
     this.handleSize = 0.3;
     this.radius = 10;
     this.style = 'shaded';
-    this.shown = { bodies: true, handles: true, velocities: true, links: true, forces: true, lights: true, trajectories: false };
+    this.shown = { bodies: true, handles: true, velocities: true, links: true, forces: true, lights: true, trajectories: false, views: false };
     this.poses = null;
     this.t = 0;
     this.frame = 0;
@@ -380,6 +404,7 @@ export class GraphicalViewer {
         } });
     });
     ix.ofKind('trajectory').forEach((element) => this.addTrajectory(element, add));
+    ix.ofKind('view').forEach((element, i) => this.addView(element, i, add));
     this.applyVisibility();
     this.placeHandles();
     if (this.ui.knots) this.ui.knots();
@@ -408,6 +433,60 @@ export class GraphicalViewer {
     });
     line.userData.knots = handles;
     this.paths.add(line);
+  }
+
+  // A `view` element (seed 4.1.7) as asgard render places its camera: the
+  // rotation R (-rot, world to view), -pos (scene units after rotation) and
+  // -center c put the point looked at at Rᵀ(−pos) + c and the eye along
+  // Rᵀ ẑ from it.  Three handles: -center (a ball at c; read-only when
+  // -follow or -trajectory moves it), -pos (a knob on a spoke from the
+  // point looked at along the view's up), -rot (a knob on a spoke from that
+  // point toward the eye; dragging it turns the view by the rotation taking
+  // the spoke to the pointer).  The spokes are 0.3 of the scene's radius.  An
+  // option not written takes the value the core's camera has (poses.views)
+  // and is appended when dragged.  `index`: the view's place among views.
+  addView(element, index, add) {
+    const ix = this.index, core = (this.poses.views || [])[index];
+    if (!core || !core.cameras.length) return;
+    const [eye, target, up] = core.cameras[0].map((v) => new THREE.Vector3(...v));
+    const z = eye.clone().sub(target).normalize(), y = up.clone().normalize(), x = y.clone().cross(z);
+    const coreRot = new THREE.Quaternion().setFromRotationMatrix(new THREE.Matrix4().makeBasis(x, y, z)).invert();
+    const fallbackRot = rotationLiteral(coreRot, 3);
+    const q = () => rotationOf(rot.value || fallbackRot);
+    const p = () => new THREE.Vector3(...(pos.value || ZERO));
+    const c = () => new THREE.Vector3(...centre.value);
+    const looked = () => p().negate().applyQuaternion(q().invert()).add(c());
+    const spoke = () => this.radius * 0.3;
+    const rot = add({ kind: 'view', element, param: 'rot', ...ix.vector(element, 'rot', { counts: [3, 4], fallback: fallbackRot }),
+      anchor: looked,
+      where: () => looked().add(new THREE.Vector3(0, 0, spoke()).applyQuaternion(q().invert())),
+      valueFrom: (w, d) => {
+        const from = d.point.clone().sub(d.anchor).normalize(), to = w.clone().sub(d.anchor);
+        if (to.lengthSq() === 0) return d.value.slice();
+        const inverse = new THREE.Quaternion().setFromUnitVectors(from, to.normalize()).multiply(rotationOf(d.value).invert());
+        return rotationLiteral(inverse.invert(), d.value.length === 4 ? 4 : 3);
+      } });
+    // The -pos knob stands off the point looked at along the view's up (so
+    // that it is not under the centre's ball when -pos is zero); dragging
+    // it moves the point looked at as much.
+    const upward = () => new THREE.Vector3(0, spoke(), 0).applyQuaternion(q().invert());
+    const pos = add({ kind: 'view', element, param: 'pos', ...ix.vector(element, 'pos'),
+      anchor: looked,
+      where: () => looked().add(upward()),
+      valueFrom: (w) => {
+        const v = w.clone().sub(upward()).sub(c()).applyQuaternion(q()).negate();
+        return [v.x, v.y, v.z].map((k) => round(k));
+      } });
+    // Without -center (or with one that moves) the centre at the start is
+    // where the core's camera puts it: the target plus Rᵀ pos.
+    const c0 = target.clone().add(p().applyQuaternion(q().invert()));
+    const moving = ix.text(element, 'follow') ? `-follow ${ix.text(element, 'follow')} moves it`
+      : ix.text(element, 'trajectory') ? `-trajectory ${ix.text(element, 'trajectory')} moves it` : '';
+    const centreSpec = ix.vector(element, 'center', { fallback: [c0.x, c0.y, c0.z] });
+    if (moving || !centreSpec.value) Object.assign(centreSpec, { editable: centreSpec.editable && !moving, reason: moving || centreSpec.reason, value: [c0.x, c0.y, c0.z] });
+    const centre = add({ kind: 'view', element, param: 'center', ...centreSpec,
+      where: c,
+      valueFrom: (w, d) => d.value.map((v, k) => round(v + w.getComponent(k) - d.point.getComponent(k))) });
   }
 
   // The curve of a trajectory as drawn: through its handles, else the core's samples.
@@ -579,9 +658,15 @@ export class GraphicalViewer {
     const s = j > i && times[j] > times[i] ? (t - times[i]) / (times[j] - times[i]) : 0;
     this.frame = s > 0.5 ? j : i;
     const qa = new THREE.Quaternion(), qb = new THREE.Quaternion();
+    const vel = this.poses.velocities;
     for (const b of this.bodies.values()) {
       if (b.index < 0) continue;
       const a = poses[i], c = poses[j], k = 7 * b.index;
+      if (vel && j > i) {
+        hermitePose(a.slice(k, k + 7), vel[i].slice(6 * b.index, 6 * b.index + 6), c.slice(k, k + 7),
+          vel[j].slice(6 * b.index, 6 * b.index + 6), times[j] - times[i], s, b.group);
+        continue;
+      }
       b.group.position.set(a[k] + s * (c[k] - a[k]), a[k + 1] + s * (c[k + 1] - a[k + 1]), a[k + 2] + s * (c[k + 2] - a[k + 2]));
       qa.set(a[k + 3], a[k + 4], a[k + 5], a[k + 6]);
       qb.set(c[k + 3], c[k + 4], c[k + 5], c[k + 6]);
@@ -667,6 +752,7 @@ export class GraphicalViewer {
       this.canvas.setPointerCapture(ev.pointerId);
       if (this.playing) this.play();
       this.dragging = h;
+      this.lastDrag = null;
       this.seek(this.poses.times[0]);
       const point = h.mesh.position.clone();
       this.dragStart = { point, value: h.value.slice(), anchor: h.anchor ? h.anchor() : null };
@@ -689,15 +775,7 @@ export class GraphicalViewer {
         this.showLabel(h ? this.describe(h) : '');
         return;
       }
-      this.raycaster.setFromCamera(this.pointer(ev), this.camera);
-      const p = this.raycaster.ray.intersectPlane(this.plane, new THREE.Vector3());
-      if (!p || !this.grab) return;
-      const h = this.dragging;
-      const at = this.dragStart.point.clone().add(p.sub(this.grab));
-      h.value = h.valueFrom(at, this.dragStart, ev);
-      this.seek(this.poses.times[0]);
-      this.showLabel(this.describe(h));
-      this.sendDrag(h);
+      this.dragTo(ev);
     });
     const end = async (ev) => {
       if (!this.dragging) {
@@ -717,7 +795,40 @@ export class GraphicalViewer {
     };
     this.canvas.addEventListener('pointerup', end);
     this.canvas.addEventListener('pointercancel', end);
-    window.addEventListener('keydown', (ev) => { if (ev.key === 'Escape' && this.mode) this.cancelPick(); });
+    window.addEventListener('keydown', (ev) => {
+      if (ev.key === 'Escape' && this.mode) this.cancelPick();
+      // While dragging (seed 4.1.3): z pushes the handle away from the
+      // viewer, x pulls it nearer, by a twentieth of the scene's radius.
+      if (this.dragging && this.lastDrag && (ev.key === 'z' || ev.key === 'x')) {
+        ev.preventDefault();
+        this.pushDepth((ev.key === 'z' ? 1 : -1) * this.depthStep());
+      }
+    });
+  }
+
+  depthStep() { return this.radius / 20; }
+
+  // The dragged handle at the pointer of `ev`: the point of the drag plane
+  // under it, moved as the grab point was.
+  dragTo(ev) {
+    this.lastDrag = { clientX: ev.clientX, clientY: ev.clientY, shiftKey: ev.shiftKey };
+    this.raycaster.setFromCamera(this.pointer(ev), this.camera);
+    const p = this.raycaster.ray.intersectPlane(this.plane, new THREE.Vector3());
+    if (!p || !this.grab) return;
+    const h = this.dragging;
+    const at = this.dragStart.point.clone().add(p.sub(this.grab));
+    h.value = h.valueFrom(at, this.dragStart, this.lastDrag);
+    this.seek(this.poses.times[0]);
+    this.showLabel(this.describe(h));
+    this.sendDrag(h);
+  }
+
+  // Moves the drag plane by `depth` along the view direction: the handle
+  // (the plane's point under the pointer, offset as when it was grabbed)
+  // goes that much deeper and stays under the pointer.
+  pushDepth(depth) {
+    this.plane.constant -= depth;
+    this.dragTo(this.lastDrag);
   }
 
   // --- selection and clicks for creating elements (seed 4.1) ---------------
@@ -854,7 +965,7 @@ export class GraphicalViewer {
   handleList() {
     return this.handles.map((h) => ({
       id: h.id, kind: h.kind, element: h.element, param: h.param, value: h.value, editable: h.editable,
-      reason: h.reason, shown: h.object.visible && h.mesh.visible, arrow: !!(h.arrow && h.arrow.visible),
+      reason: h.reason, shown: h.object.visible && h.mesh.visible, arrow: !!(h.arrow && h.arrow.visible), world: h.mesh.position.toArray(),
       ...this.toScreen(h.mesh.position),
     }));
   }

@@ -13,6 +13,12 @@
 //              link#i   vector    ball at an object-to-point link's fixed point
 //   light      light    pos, dir  ball at the light, arrow along a directional light's direction
 //   knot       trajectory points  ball at each control point      moves in the screen plane (its time kept)
+//   view       view     center    ball at the centre of rotation   moves in the screen plane
+//              view     pos       knob above the point looked at   moves in the screen plane
+//              view     rot       knob on a spoke toward the eye   turns the view
+//
+// While a handle is dragged, 'z' pushes it away from the viewer and 'x'
+// pulls it nearer (seed 4.1.3).
 //
 // A handle whose value is not a literal the session can rewrite (an
 // expression, a command made in a loop …) is read-only: drawn grey and
@@ -53,15 +59,15 @@ export function rotationLiteral(q, count) {
 
 const COLORS = {
   position: 0xffa000, rotation: 0xc040c0, velocity: 0x2070ff, angvel: 0x10a0a0,
-  force: 0xe03030, torque: 0xa05010, offset: 0xe03030, link: 0x209020, light: 0xd0a000, knot: 0x3060d0,
+  force: 0xe03030, torque: 0xa05010, offset: 0xe03030, link: 0x209020, light: 0xd0a000, knot: 0x3060d0, view: 0x7040e0,
 };
 // Which toggle shows a kind (the viewer's element-type check boxes).
 export const GROUPS = {
   position: 'handles', rotation: 'handles', velocity: 'velocities', angvel: 'velocities',
-  force: 'forces', torque: 'forces', offset: 'forces', link: 'links', light: 'lights', knot: 'trajectories',
+  force: 'forces', torque: 'forces', offset: 'forces', link: 'links', light: 'lights', knot: 'trajectories', view: 'views',
 };
 // Coincident handles: the lower wins the pick.
-const PRIORITY = { position: 0, rotation: 1, offset: 2, link: 2, light: 2, force: 3, torque: 3, velocity: 4, angvel: 5, knot: 6 };
+const PRIORITY = { position: 0, rotation: 1, offset: 2, link: 2, light: 2, force: 3, torque: 3, velocity: 4, angvel: 5, knot: 6, view: 7 };
 
 // The session's view of one element's parameters.
 export class ParameterIndex {

@@ -11,7 +11,9 @@ const GRAPHICAL = {
   body: ['init_pos', 'init_rot', 'init_dpos', 'init_drot'],
   force: ['x', 'y', 'z', 'offset'],
   link: ['offset1', 'offset2', 'x', 'y', 'z'],
+  torque: ['x', 'y', 'z', 'offset'],
   lightsource: ['pos', 'dir'],
+  view: ['pos', 'rot', 'center'],
   trajectory: ['points'],
   simulator: ['start', 'finish', 'rtol'],
 };

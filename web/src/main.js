@@ -9,6 +9,7 @@ import { download, gltfText, imageBlob, movieRequest } from './export.js';
 import { GraphicalViewer } from './graphical.js';
 import { LanguageViewer } from './language.js';
 import { TrajectoryEditor } from './timeline.js';
+import { ShapeEditor } from './shape.js';
 
 const params = new URLSearchParams(location.search);
 const animation = Number(params.get('a') || 0);
@@ -33,6 +34,7 @@ function applyState(state) {
   app.graphical.setParameters(state.parameters, state.elements);
   showSimulatorOptions(state);
   showCreateMenu(state);
+  if (app.shapes) app.shapes.refresh();
   const errors = state.diagnostics.filter((d) => d.severity === 'error');
   app.setStatus(errors.length ? `${errors.length} error(s): the last good scene is shown` : '');
 }
@@ -216,10 +218,62 @@ function setupCreateMenu() {
     const element = g().selectedElement;
     if (!element) return;
     try {
-      await run('delete', { element });
+      // A body goes with the forces, torques, links, trajectories and views
+      // that name it (one undo step); the status line lists them.
+      const r = await run('delete', { element });
+      const removed = (r && r.removed) || [];
+      app.setStatus(`deleted ${element}${removed.length ? ` and what named it: ${removed.join(', ')}` : ''}`);
       g().select(null);
     } catch { /* the status says why */ }
   };
+}
+
+// A parameter's word in the text as byte offsets [begin, end) (lines and
+// columns count bytes, as the session does), with the text's bytes.
+function wordBytes(p) {
+  const bytes = new TextEncoder().encode(app.text);
+  const offset = (line, column) => {
+    let i = 0;
+    for (let l = 1; l < line && i < bytes.length; ++i) if (bytes[i] === 10) ++l;
+    return i + column - 1;
+  };
+  return { bytes, begin: offset(p.line, p.column), end: offset(p.end_line, p.end_column) };
+}
+const decode = (x) => new TextDecoder().decode(x);
+
+// The scene's shape sets and their -desc words, for the shape editor.  A
+// -desc the editor may rewrite is a braced word (Tcl substitutes nothing
+// in it) of a command that ran once.
+function shapeSets() {
+  if (!app.state) return [];
+  return app.state.elements.filter((e) => e.kind === 'shape_set').map((e) => {
+    const p = app.state.parameters.find((x) => x.element === e.element && x.param === 'desc');
+    let reason = !e.editable ? e.reason : !p ? 'it has no -desc' : p.line > 0 ? '' : 'its -desc could not be located';
+    if (!reason) {
+      const w = wordBytes(p);
+      if (w.bytes[w.begin] !== 123) reason = 'its -desc is not a braced literal (it is built by variables or commands)';
+    }
+    return { element: e.element, value: p ? p.value : '', editable: !reason, reason };
+  });
+}
+
+// The shape editor's -desc: the braced word replaced through the session
+// (set_parameter with text), so that every language viewer shows it while
+// dragging and a drag is one undo step; when `done`, re-simulated.  One
+// call is in flight at a time; meanwhile only the newest word waits.
+const shapeWriter = { busy: false, next: null };
+async function writeShape(element, desc, done) {
+  shapeWriter.next = { element, desc, done: done || (shapeWriter.next && shapeWriter.next.done) };
+  if (shapeWriter.busy) return;
+  shapeWriter.busy = true;
+  try {
+    while (shapeWriter.next) {
+      const w = shapeWriter.next;
+      shapeWriter.next = null;
+      try { await conn.call('set_parameter', { element: w.element, param: 'desc', text: w.desc }); } catch (e) { app.setStatus(String(e.message || e)); }
+      if (w.done && !shapeWriter.next) await run('simulate', {}).catch(() => {});
+    }
+  } finally { shapeWriter.busy = false; }
 }
 
 // Exports (control panel): downloads of the picture, the scene as glTF,
@@ -294,6 +348,14 @@ async function main() {
       await run('simulate', {}).catch(() => {});
     },
   });
+  app.shapes = new ShapeEditor(document.getElementById('shape-editor'), {
+    shapes: () => shapeSets(),
+    // While dragging: the -desc word rewritten in every language viewer
+    // (the newest when one is in flight); `done`: then re-simulate, which
+    // also ends the undo step.
+    write: (element, desc, done) => writeShape(element, desc, done),
+  });
+  document.getElementById('shapes-open').onclick = () => app.shapes.show(!app.shapes.shown());
   setupCreateMenu();
   setupExports();
   document.getElementById('camera-view').onchange = (ev) => app.graphical.setView(ev.target.value);
@@ -303,7 +365,7 @@ async function main() {
   conn.on('text', (e) => {
     app.text = e.text;
     for (const v of app.languageViewers) v.showSession(e.text, null);
-    app.graphical.parameterEdited(e.element, e.param, e.values);
+    if (Array.isArray(e.values)) app.graphical.parameterEdited(e.element, e.param, e.values);
   });
   conn.on('state', (e) => applyState(e.state));
   conn.on('scene', (e) => app.graphical.setScene(e.meshes, e.poses));

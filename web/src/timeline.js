@@ -7,7 +7,8 @@
 // "Delete point" removes the chosen one.  Every change is the trajectory's
 // whole -points list sent through the session like a handle's drag (the
 // literal is rewritten in every language viewer as it moves); releasing or
-// adding or deleting re-simulates.
+// adding or deleting re-simulates.  The control points' times are also
+// marks above the header's time slider, dragged the same way.
 import { TrajectoryCurve } from './trajectory.js';
 import { round } from './handles.js';
 
@@ -44,6 +45,44 @@ export class TrajectoryEditor {
     this.svg.addEventListener('pointermove', (ev) => this.move(ev));
     this.svg.addEventListener('pointerup', (ev) => this.release(ev));
     this.svg.addEventListener('pointercancel', (ev) => this.release(ev));
+    // The same times as marks on the header's time slider (seed Figure
+    // 4.4), dragged sideways like the panel's markers.
+    this.slider = viewer.ui.slider;
+    this.marks = document.createElement('div');
+    this.marks.id = 'time-marks';
+    document.body.appendChild(this.marks);
+    this.marks.addEventListener('pointermove', (ev) => this.move(ev));
+    this.marks.addEventListener('pointerup', (ev) => this.release(ev));
+    this.marks.addEventListener('pointercancel', (ev) => this.release(ev));
+    window.addEventListener('resize', () => this.drawMarks());
+  }
+
+  // Time → page x on the header's slider (its track runs between half a
+  // thumb from each end; Chromium's and Firefox's thumbs are 16 px).
+  sliderScale() {
+    const r = this.slider.getBoundingClientRect(), poses = this.viewer.poses;
+    const t0 = poses ? poses.t0 : 0, t1 = poses && poses.t1 > t0 ? poses.t1 : t0 + 1, inset = 8;
+    return { r, t0, t1, x: (t) => r.left + inset + ((t - t0) / (t1 - t0)) * (r.width - 2 * inset), perPixel: (t1 - t0) / (r.width - 2 * inset) };
+  }
+
+  drawMarks() {
+    this.marks.textContent = '';
+    if (this.root.style.display !== 'block') return;
+    const S = this.sliderScale();
+    Object.assign(this.marks.style, { left: `${S.r.left}px`, top: `${S.r.top - 7}px`, width: `${S.r.width}px` });
+    this.knots().forEach((h, i) => {
+      if (h.t < S.t0 - 1e-9 || h.t > S.t1 + 1e-9) return;
+      const m = document.createElement('div');
+      m.className = `time-mark${i === this.selected ? ' chosen' : ''}`;
+      m.dataset.knot = String(i);
+      m.title = `${this.element} point #${i + 1}: t = ${round(h.t, 10000)} (drag sideways)`;
+      m.style.left = `${S.x(h.t) - S.r.left - 5}px`;
+      m.addEventListener('pointerdown', (ev) => {
+        this.press(ev, { kind: 'time', knot: i, perPixel: S.perPixel });
+        this.marks.setPointerCapture(ev.pointerId);
+      });
+      this.marks.appendChild(m);
+    });
   }
 
   // The trajectories the viewer shows with editable control points.
@@ -59,7 +98,7 @@ export class TrajectoryEditor {
     const names = this.lines().map((l) => l.userData.element);
     const visible = this.viewer.shown.trajectories && names.length > 0;
     this.root.style.display = visible ? 'block' : 'none';
-    if (!visible) return;
+    if (!visible) { this.drawMarks(); return; }
     if ([...this.select.options].map((o) => o.value).join('\n') !== names.join('\n')) {
       this.select.textContent = '';
       for (const n of names) this.select.appendChild(new Option(n, n));
@@ -72,6 +111,7 @@ export class TrajectoryEditor {
     this.info.textContent = this.selected >= 0
       ? `#${this.selected + 1}: t = ${round(knots[this.selected].t, 10000)}, {${knots[this.selected].value.join(' ')}}` : '';
     this.draw();
+    this.drawMarks();
   }
 
   // Time → x on the panel: the simulated interval and every knot fit.
@@ -155,7 +195,7 @@ export class TrajectoryEditor {
     this.selected = what.knot;
     const h = this.knots()[what.knot];
     this.drag = { ...what, x: ev.clientX, y: ev.clientY, t: h.t, value: h.value.slice() };
-    this.svg.setPointerCapture(ev.pointerId);
+    if (!what.perPixel) this.svg.setPointerCapture(ev.pointerId);
     this.render();
   }
 
@@ -166,7 +206,7 @@ export class TrajectoryEditor {
     if (!h) return;
     const L = this.L;
     if (d.kind === 'time') {
-      const dt = ((ev.clientX - d.x) / (L.width - 2 * PAD)) * (L.t1 - L.t0);
+      const dt = (ev.clientX - d.x) * (d.perPixel || (L.t1 - L.t0) / (L.width - 2 * PAD));
       const lo = d.knot > 0 ? knots[d.knot - 1].t + MIN_GAP : -Infinity;
       const hi = d.knot + 1 < knots.length ? knots[d.knot + 1].t - MIN_GAP : Infinity;
       h.t = round(Math.min(hi, Math.max(lo, d.t + dt)));
@@ -182,7 +222,7 @@ export class TrajectoryEditor {
   release(ev) {
     if (!this.drag) return;
     this.drag = null;
-    try { this.svg.releasePointerCapture(ev.pointerId); } catch { /* released */ }
+    for (const e of [this.svg, this.marks]) try { e.releasePointerCapture(ev.pointerId); } catch { /* released */ }
     this.render();
     this.end(this.element, null);
   }

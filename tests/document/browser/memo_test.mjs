@@ -1,6 +1,8 @@
-// Opens the HTML of the memo in headless Chromium: the animation must move
-// (two screenshots of its box at different times differ) and its controls
-// (play/pause, seek) must work.  Exits 1 with a message on any failure.
+// Opens the HTML of the memo in headless Chromium without WebGL: the page
+// embeds the WebGL player and its data, but falls back to its pre-rendered
+// frames; the animation must move (two screenshots of its box at different
+// times differ) and its controls (play/pause, seek) must work.  (The WebGL
+// playing is tests/web/html_test.mjs.)  Exits 1 with a message on any failure.
 import { chromium } from 'playwright-core';
 import { mkdtempSync, rmSync, writeFileSync } from 'node:fs';
 import { tmpdir } from 'node:os';
@@ -19,7 +21,7 @@ const sleep = (ms) => new Promise((r) => setTimeout(r, ms));
 const context = await chromium.launchPersistentContext(userData, {
   executablePath: '/usr/bin/chromium',
   headless: true,
-  args: ['--headless', '--no-sandbox', '--disable-gpu', '--disable-quic', '--no-first-run',
+  args: ['--headless', '--no-sandbox', '--disable-gpu', '--disable-webgl', '--disable-quic', '--no-first-run',
          '--disable-background-networking', '--disable-component-update', '--disable-sync'],
   viewport: { width: 900, height: 900 },
 });
@@ -44,6 +46,12 @@ try {
   const frame = async () => Number(await fig.getAttribute('data-frame'));
 
   check(await page.locator('text=Whom it may concern').count() === 1, 'the memo text is shown');
+  const fallback = await page.evaluate(() => ({
+    data: !!JSON.parse(document.getElementById('asgard-frames').textContent)['anim-1'].player,
+    player: typeof window.asgardPlayer === 'function',
+    webgl: document.querySelectorAll('#anim-1 canvas').length !== 1 || document.querySelector('#anim-1').dataset.renderer === 'webgl',
+  }));
+  check(fallback.data && fallback.player && !fallback.webgl, 'the page has the WebGL player and data, and without WebGL it plays its frames');
   const poster = await shot('poster.png');
   check(await time.textContent() === '0.00 s', 'the poster frame is at t = 0.00 s');
   const blank = await page.evaluate(() => {

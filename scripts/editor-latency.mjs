@@ -1,0 +1,112 @@
+// The editor's latency benchmark (issue 13), run in headless Chromium
+// (software WebGL, SwiftShader) against `asgard studio`; it prints numbers
+// and asserts nothing.
+//
+//   node scripts/editor-latency.mjs [BUILD_DIR]      (default: build)
+//
+// 1. drag → text: b3's position handle on the seed pendulum dragged in 60
+//    steps; per step, the time from the pointer event reaching the canvas
+//    to the language viewer showing the new -init_pos (the server's `text`
+//    event applied).  Each step waits for its text before the next move.
+// 2. drag end → motion: 10 drags; the time from releasing the handle to the
+//    re-simulated motion being shown (the `scene` event applied).
+// 3. playback of 100 bodies: a 10 × 10 grid of boxes thrown up, spinning,
+//    under gravity; 3 s of Play; the frame rate (requestAnimationFrame) and
+//    the main thread's time per frame in the viewer (seek: interpolation,
+//    handles; and the draw).
+import { mkdtempSync, rmSync, writeFileSync } from 'node:fs';
+import { tmpdir } from 'node:os';
+import { dirname, join, resolve } from 'node:path';
+import { fileURLToPath } from 'node:url';
+
+const source = resolve(dirname(fileURLToPath(import.meta.url)), '..');
+const build = resolve(process.argv[2] || join(source, 'build'));
+process.env.ASGARD_WEB_ROOT ||= join(build, 'web');
+process.env.ASGARD_WEB_MODULES ||= join(source, 'web', 'node_modules');
+const { startStudio, launchBrowser, openEditor, sleep, waitFor } = await import(join(source, 'tests/web/common.mjs'));
+const asgard = join(build, 'core/app/asgard');
+
+const pct = (xs, p) => { const s = [...xs].sort((a, b) => a - b); return s[Math.min(s.length - 1, Math.floor((p / 100) * s.length))]; };
+const summary = (xs) => `median ${pct(xs, 50).toFixed(1)} ms, 95th percentile ${pct(xs, 95).toFixed(1)} ms, max ${Math.max(...xs).toFixed(1)} ms (n = ${xs.length})`;
+
+const dir = mkdtempSync(join(tmpdir(), 'asgard-latency-'));
+const lines = ['simulator -finish 10 -collisions 0', 'shape_set box -desc {-box {0.6 0.4 0.3}}'];
+for (let i = 0; i < 100; ++i) {
+  const x = (i % 10) - 4.5, z = Math.floor(i / 10) - 4.5;
+  lines.push(`body b${i} -shape box -init_pos {${x} 0 ${z}} -init_dpos {0 ${5 + (i % 7)} 0} -init_drot {${(i % 3) - 1} 2 ${(i % 5) - 2}}`);
+  lines.push(`force -body b${i} -gravitational 1 -x 0 -y -9.8 -z 0`);
+}
+writeFileSync(join(dir, 'hundred.al'), `${lines.join('\n')}\n`);
+writeFileSync(join(dir, 'pendulum.al'), (await import('node:fs')).readFileSync(join(source, 'samples/pendulum.al')));
+
+const { context, close } = await launchBrowser();
+const servers = [];
+try {
+  // 1 and 2 on the pendulum.
+  let s = await startStudio(asgard, join(dir, 'pendulum.al'));
+  servers.push(s.proc);
+  let { page } = await openEditor(context, s.url, 'b3');
+  await page.evaluate(() => {
+    const app = window.asgard, conn = app.conn, g = app.graphical;
+    app.bench = { moves: [], texts: [], scenes: [] };
+    g.canvas.addEventListener('pointermove', () => app.bench.moves.push(performance.now()), true);
+    g.canvas.addEventListener('pointerup', () => { app.bench.released = performance.now(); }, true);
+    const text = conn.handlers.get('text'), scene = conn.handlers.get('scene');
+    conn.handlers.set('text', (m) => { text(m); app.bench.texts.push(performance.now()); });
+    conn.handlers.set('scene', (m) => { scene(m); g.draw(); app.bench.scenes.push(performance.now()); });
+  });
+  const dragText = [], dragEnd = [];
+  for (let round = 0; round < 10; ++round) {
+    const at = await page.evaluate(() => window.asgard.graphical.handleList().find((x) => x.id === 'b3.init_pos'));
+    await page.mouse.move(at.x, at.y);
+    await page.mouse.down();
+    const steps = round === 0 ? 60 : 6;
+    for (let i = 1; i <= steps; ++i) {
+      const n = await page.evaluate(() => window.asgard.bench.texts.length);
+      await page.mouse.move(at.x + (round % 2 ? -1 : 1) * i * 2, at.y + i);
+      if (!(await waitFor(() => page.evaluate((k) => window.asgard.bench.texts.length > k, n), 'the text of a drag step', 5000))) continue;
+      dragText.push(await page.evaluate(() => { const b = window.asgard.bench; return b.texts[b.texts.length - 1] - b.moves[b.moves.length - 1]; }));
+    }
+    const n = await page.evaluate(() => window.asgard.bench.scenes.length);
+    await page.mouse.up();
+    if (await waitFor(() => page.evaluate((k) => window.asgard.bench.scenes.length > k, n), 'the new motion', 10000))
+      dragEnd.push(await page.evaluate(() => { const b = window.asgard.bench; return b.scenes[b.scenes.length - 1] - b.released; }));
+    await sleep(100);
+  }
+  console.log(`drag → number in the text:   ${summary(dragText)}`);
+  console.log(`drag end → new motion shown: ${summary(dragEnd)}`);
+  s.proc.kill('SIGTERM');
+
+  // 3: 100 bodies.
+  s = await startStudio(asgard, join(dir, 'hundred.al'));
+  servers.push(s.proc);
+  ({ page } = await openEditor(context, s.url, 'b99'));
+  const r = await page.evaluate(async () => {
+    const g = window.asgard.graphical;
+    const seek = g.seek.bind(g);  // seek draws too
+    const spent = [];
+    let inFrame = 0;
+    g.seek = (t) => { const a = performance.now(); seek(t); inFrame += performance.now() - a; };
+    const stamps = [];
+    await new Promise((done) => {
+      const tick = (now) => {
+        stamps.push(now);
+        spent.push(inFrame);
+        inFrame = 0;
+        if (now - stamps[0] < 3000) requestAnimationFrame(tick); else done();
+      };
+      g.play();
+      requestAnimationFrame(tick);
+    });
+    g.play();
+    const intervals = stamps.slice(1).map((t, i) => t - stamps[i]);
+    return { frames: intervals.length, seconds: (stamps[stamps.length - 1] - stamps[0]) / 1000, intervals, spent: spent.slice(2) };
+  });
+  console.log(`playback, 100 bodies:        ${(r.frames / r.seconds).toFixed(1)} frames/s over ${r.seconds.toFixed(1)} s; ` +
+    `frame interval ${summary(r.intervals)}`);
+  console.log(`  main thread per frame (interpolation, handles, draw): ${summary(r.spent)}`);
+} finally {
+  await close();
+  for (const p of servers) p.kill('SIGTERM');
+  rmSync(dir, { recursive: true, force: true });
+}

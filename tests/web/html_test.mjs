@@ -1,0 +1,155 @@
+// The HTML export plays in WebGL (issue 13): `dochost convert memo.ens -o
+// memo.html` embeds the bodies' meshes and poses and the player; in headless
+// Chromium the WebGL canvas draws the bodies where the pre-rendered frames
+// have them (the same camera), a body's pixels move between two times, a
+// drag turns the view, play advances the time, and a browser without WebGL
+// plays the frames.  Prints the sizes of the three --html modes.
+// Usage: node html_test.mjs DOCHOST OUT/memo.ens OUT
+import { spawnSync } from 'node:child_process';
+import { statSync, writeFileSync } from 'node:fs';
+import { join } from 'node:path';
+import { pathToFileURL } from 'node:url';
+import { checker, launchBrowser, sleep, waitFor } from './common.mjs';
+
+const [dochost, doc, outDir] = process.argv.slice(2);
+const { check, failures } = checker();
+
+const sizes = {};
+for (const mode of ['webgl', 'webgl-poster', 'frames']) {
+  const out = join(outDir, `memo-${mode}.html`);
+  const r = spawnSync(dochost, ['convert', doc, '-o', out, '--html', mode, '--quiet'], { encoding: 'utf8' });
+  check(r.status === 0, `dochost convert --html ${mode} exits 0 ${r.stderr || ''}`);
+  sizes[mode] = r.status === 0 ? statSync(out).size : 0;
+}
+console.log(`     sizes: webgl (with frames) ${sizes.webgl} B, webgl-poster ${sizes['webgl-poster']} B, ` +
+  `frames (pre-rendered) ${sizes.frames} B: webgl-poster is ${(100 * sizes['webgl-poster'] / sizes.frames).toFixed(1)} %`);
+check(sizes['webgl-poster'] > 0 && sizes['webgl-poster'] < sizes.frames / 4, 'the WebGL page with only its poster is under a quarter of the pre-rendered one');
+
+// The centroid and count of the pixels of a canvas (the WebGL one, or a
+// pre-rendered frame given as a data URL) whose colour is near `rgb`.
+async function colourBlob(page, { frame = null, rgb }) {
+  return page.evaluate(async ({ frame, rgb }) => {
+    const fig = document.querySelector('#anim-1');
+    let source = fig.querySelector('canvas.asgard-webgl');
+    if (frame !== null) {
+      const data = JSON.parse(document.getElementById('asgard-frames').textContent)['anim-1'];
+      source = new Image();
+      source.src = data.frames[frame];
+      await source.decode();
+    }
+    const w = fig.querySelector('canvas').width, h = fig.querySelector('canvas').height;
+    const c = document.createElement('canvas');
+    c.width = w; c.height = h;
+    const ctx = c.getContext('2d');
+    ctx.drawImage(source, 0, 0, w, h);
+    const d = ctx.getImageData(0, 0, w, h).data;
+    let n = 0, sx = 0, sy = 0;
+    for (let y = 0; y < h; ++y)
+      for (let x = 0; x < w; ++x) {
+        const i = 4 * (y * w + x);
+        // Same hue: the colour's channels in the same order with the same
+        // spread (shading scales them).
+        const [r, g, b] = [d[i], d[i + 1], d[i + 2]];
+        const m = Math.max(r, g, b);
+        if (m < 40) continue;
+        const e = Math.abs(r / m - rgb[0] / Math.max(...rgb)) + Math.abs(g / m - rgb[1] / Math.max(...rgb)) + Math.abs(b / m - rgb[2] / Math.max(...rgb));
+        if (e < 0.25) { ++n; sx += x; sy += y; }
+      }
+    return n ? { n, x: sx / n, y: sy / n } : { n: 0 };
+  }, { frame, rgb });
+}
+
+const { context, close } = await launchBrowser();
+try {
+  const page = context.pages()[0] ?? await context.newPage();
+  const errors = [];
+  page.on('pageerror', (e) => errors.push(String(e)));
+  await page.goto(pathToFileURL(join(outDir, 'memo-webgl.html')).href);
+  await waitFor(() => page.evaluate(() => document.querySelector('#anim-1')?.dataset.state === 'paused'), 'the page is set up');
+  const info = await page.evaluate(() => {
+    const fig = document.querySelector('#anim-1');
+    const gl = fig.querySelector('canvas.asgard-webgl');
+    const data = JSON.parse(document.getElementById('asgard-frames').textContent)['anim-1'];
+    return { renderer: fig.dataset.renderer, glShown: !!gl && gl.offsetWidth > 0, fallbackHidden: fig.querySelector('canvas:not(.asgard-webgl)').offsetWidth === 0,
+      colours: Object.fromEntries(data.player.bodies.map((b) => [b.name, b.pieces[0].color])), times: data.times, moving: data.player.bodies.map((b) => b.track !== undefined) };
+  });
+  check(info.renderer === 'webgl' && info.glShown && info.fallbackHidden, 'the animation plays in WebGL (the frames canvas hidden)');
+  check(info.moving.every((m) => m), 'both bodies move, so both have a track of poses');
+  const orange = info.colours.b3, blue = info.colours.b2;
+  const fig = page.locator('figure#anim-1');
+  const shot = async (name) => writeFileSync(join(outDir, name), await fig.screenshot());
+
+  // At two times: b3's pixels are where the player projects its centre, and
+  // where the pre-rendered frame of that time has them (the same camera).
+  const at = {};
+  for (const t of [1.0, 2.5]) {
+    const k = info.times.findIndex((x) => Math.abs(x - t) < 1e-6);
+    const p = await page.evaluate((t) => { const f = document.querySelector('#anim-1'); f.asgard.showTime(t); return f.asgard.webgl.project('b3', t); }, t);
+    const gl = await colourBlob(page, { rgb: orange });
+    const frame = await colourBlob(page, { frame: k, rgb: orange });
+    const b2 = await colourBlob(page, { rgb: blue });
+    const p2 = await page.evaluate((t) => document.querySelector('#anim-1').asgard.webgl.project('b2', t), t);
+    await shot(`webgl-t${t}.png`);
+    at[t] = { p, gl };
+    check(gl.n > 200 && Math.hypot(gl.x - p[0], gl.y - p[1]) < 2,
+      `t = ${t}: b3's ${gl.n} orange pixels centre at (${gl.x?.toFixed(1)}, ${gl.y?.toFixed(1)}), its projected centre (${p[0].toFixed(1)}, ${p[1].toFixed(1)})`);
+    check(k >= 0 && frame.n > 200 && Math.hypot(frame.x - gl.x, frame.y - gl.y) < 3 && Math.abs(frame.n / gl.n - 1) < 0.2,
+      `t = ${t}: the pre-rendered frame has b3 at (${frame.x?.toFixed(1)}, ${frame.y?.toFixed(1)}), ${frame.n} pixels`);
+    check(b2.n > 200 && Math.hypot(b2.x - p2[0], b2.y - p2[1]) < 2, `t = ${t}: b2 (blue) is drawn at its projected centre`);
+  }
+  const moved = Math.hypot(at[2.5].gl.x - at[1.0].gl.x, at[2.5].gl.y - at[1.0].gl.y);
+  check(moved > 20, `b3's pixels move by ${moved.toFixed(1)} px from t = 1 to t = 2.5 (b3 rises 1.5 m)`);
+  check(at[2.5].gl.y < at[1.0].gl.y, 'b3 rises on the screen');
+
+  // A drag turns the view: b3 is drawn elsewhere, where the player projects it.
+  const box = await page.locator('canvas.asgard-webgl').boundingBox();
+  await page.mouse.move(box.x + box.width / 2, box.y + box.height / 2);
+  await page.mouse.down();
+  for (let i = 1; i <= 5; ++i) { await page.mouse.move(box.x + box.width / 2 + 12 * i, box.y + box.height / 2 + 12 * i); await sleep(20); }
+  await page.mouse.up();
+  const turned = await page.evaluate(() => document.querySelector('#anim-1').asgard.webgl.project('b3'));
+  const glTurned = await colourBlob(page, { rgb: orange });
+  await shot('webgl-turned.png');
+  check(Math.hypot(turned[0] - at[2.5].p[0], turned[1] - at[2.5].p[1]) > 10 && Math.hypot(glTurned.x - turned[0], glTurned.y - turned[1]) < 2,
+    `a diagonal drag of 85 px turns the view: b3 now at (${glTurned.x?.toFixed(1)}, ${glTurned.y?.toFixed(1)}), projected (${turned[0].toFixed(1)}, ${turned[1].toFixed(1)})`);
+
+  // Play advances the time smoothly (any time, not only frame times).
+  await page.evaluate(() => document.querySelector('#anim-1').asgard.showTime(0));
+  await fig.locator('button.play').click();
+  await sleep(600);
+  const playing = await page.evaluate(() => ({ state: document.querySelector('#anim-1').dataset.state, t: Number(document.querySelector('#anim-1').dataset.time) }));
+  await fig.locator('button.play').click();
+  check(playing.state === 'playing' && playing.t > 0.2 && playing.t < 3, `playing for 0.6 s reaches t = ${playing.t.toFixed(3)}`);
+  check(errors.length === 0, `no script errors ${errors.join('; ')}`);
+
+  // Without WebGL the same page plays its pre-rendered frames.
+  const plain = await context.newPage();
+  await plain.addInitScript(() => {
+    const get = HTMLCanvasElement.prototype.getContext;
+    HTMLCanvasElement.prototype.getContext = function (kind, ...rest) { return /webgl/.test(kind) ? null : get.call(this, kind, ...rest); };
+  });
+  await plain.goto(pathToFileURL(join(outDir, 'memo-webgl.html')).href);
+  await waitFor(() => plain.evaluate(() => document.querySelector('#anim-1')?.dataset.state === 'paused'), 'the page without WebGL is set up');
+  await sleep(300);
+  const fallback = await plain.evaluate(() => {
+    const fig = document.querySelector('#anim-1');
+    const c = fig.querySelector('canvas');
+    const d = c.getContext('2d').getImageData(0, 0, c.width, c.height).data;
+    const colours = new Set();
+    for (let i = 0; i < d.length; i += 4 * 7) colours.add((d[i] >> 4) << 8 | (d[i + 1] >> 4) << 4 | d[i + 2] >> 4);
+    return { renderer: fig.dataset.renderer || '', webgl: !!fig.querySelector('canvas.asgard-webgl'), shown: c.offsetWidth > 0, colours: colours.size };
+  });
+  writeFileSync(join(outDir, 'fallback.png'), await plain.locator('figure#anim-1').screenshot());
+  check(!fallback.webgl && fallback.renderer !== 'webgl' && fallback.shown && fallback.colours > 10,
+    `without WebGL the frames canvas shows the poster (${fallback.colours} colours)`);
+  await plain.locator('#anim-1 button.play').click();
+  await sleep(500);
+  const frameNow = await plain.evaluate(() => Number(document.querySelector('#anim-1').dataset.frame));
+  check(frameNow > 3, `without WebGL play shows the frames (frame ${frameNow})`);
+} catch (e) {
+  check(false, `unexpected: ${e.stack || e}`);
+} finally {
+  await close();
+}
+if (failures.length) { console.log(`${failures.length} failure(s)`); process.exit(1); }
+console.log('all html checks passed');

@@ -1,0 +1,307 @@
+// The WebGL player of an exported page (dochost convert DOC -o OUT.html):
+// the bodies' meshes and their poses per frame, embedded in the page by
+// host-shim/html.cc, drawn in WebGL 1 without any library, so the page
+// stays small and needs no network.  The camera starts where asgard
+// render's is (the poster's view); a drag turns it about the target (a
+// virtual trackball), the wheel zooms, a double-click goes back.  The page's
+// frames player (html.cc) calls window.asgardPlayer(figure, canvas, data)
+// and, when it answers (WebGL is there), draws through it at any time with
+// the poses interpolated between frames; otherwise it shows the
+// pre-rendered frames.
+//
+// data: {t0, t1, n, camera: {eye, target, up, tan_half_fov}, lights:
+// [{directional, position, direction, color, intensity}], bodies: [{name,
+// pieces: [{color, sphere: [cx cy cz r]} | {color, v: base64 float32 xyz,
+// i: base64 uint16 or uint32 (i32: true)}], pose: [x y z qx qy qz qw] |
+// track: k}], poses: base64 float32, n frames × tracks × 7}.
+
+const VERTEX = `
+attribute vec3 position; attribute vec3 normal;
+uniform mat4 model, viewProj; varying vec3 vNormal; varying vec3 vWorld;
+void main() {
+  vec4 w = model * vec4(position, 1.0);
+  vWorld = w.xyz; vNormal = mat3(model) * normal;
+  gl_Position = viewProj * w;
+}`;
+
+const FRAGMENT = `
+precision mediump float;
+uniform vec3 color, ambient, eye; uniform int count;
+uniform vec4 lightPos[4]; uniform vec3 lightColor[4];
+varying vec3 vNormal; varying vec3 vWorld;
+void main() {
+  vec3 n = normalize(vNormal), v = normalize(eye - vWorld); vec3 sum = ambient, shine = vec3(0.0);
+  for (int k = 0; k < 4; ++k) {
+    if (k >= count) break;
+    vec3 l = lightPos[k].w > 0.5 ? normalize(lightPos[k].xyz - vWorld) : normalize(-lightPos[k].xyz);
+    float d = dot(n, l);
+    sum += lightColor[k] * max(d, 0.0);
+    if (d > 0.0) shine += 0.35 * lightColor[k] * pow(max(dot(n, normalize(l + v)), 0.0), 40.0);
+  }
+  gl_FragColor = vec4(min(color * sum + shine, vec3(1.0)), 1.0);
+}`;
+
+function bytes(base64) {
+  const s = atob(base64);
+  const out = new Uint8Array(s.length);
+  for (let i = 0; i < s.length; ++i) out[i] = s.charCodeAt(i);
+  return out.buffer;
+}
+
+// 3-vector and quaternion helpers on plain arrays.
+const sub = (a, b) => [a[0] - b[0], a[1] - b[1], a[2] - b[2]];
+const add = (a, b) => [a[0] + b[0], a[1] + b[1], a[2] + b[2]];
+const scale = (a, s) => [a[0] * s, a[1] * s, a[2] * s];
+const dot = (a, b) => a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+const cross = (a, b) => [a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]];
+const unit = (a) => scale(a, 1 / (Math.hypot(a[0], a[1], a[2]) || 1));
+
+// Rotates v by the unit quaternion q = [x y z w].
+function rotate(q, v) {
+  const u = [q[0], q[1], q[2]];
+  const t = scale(cross(u, v), 2);
+  return add(add(v, scale(t, q[3])), cross(u, t));
+}
+
+// Rotation of v about the unit axis by angle (Rodrigues).
+function turn(v, axis, angle) {
+  const c = Math.cos(angle), s = Math.sin(angle);
+  return add(add(scale(v, c), scale(cross(axis, v), s)), scale(axis, dot(axis, v) * (1 - c)));
+}
+
+// Column-major 4×4 of the pose (p, q).
+function poseMatrix(p, q) {
+  const [x, y, z, w] = q;
+  return new Float32Array([
+    1 - 2 * (y * y + z * z), 2 * (x * y + z * w), 2 * (x * z - y * w), 0,
+    2 * (x * y - z * w), 1 - 2 * (x * x + z * z), 2 * (y * z + x * w), 0,
+    2 * (x * z + y * w), 2 * (y * z - x * w), 1 - 2 * (x * x + y * y), 0,
+    p[0], p[1], p[2], 1]);
+}
+
+function multiply(a, b) {
+  const m = new Float32Array(16);
+  for (let c = 0; c < 4; ++c)
+    for (let r = 0; r < 4; ++r) {
+      let s = 0;
+      for (let k = 0; k < 4; ++k) s += a[k * 4 + r] * b[c * 4 + k];
+      m[c * 4 + r] = s;
+    }
+  return m;
+}
+
+// A UV sphere (smooth normals) as a triangle list: positions and normals.
+function sphereMesh(c, r, slices = 24, stacks = 16) {
+  const pos = [], nor = [];
+  const at = (i, j) => {
+    const th = (Math.PI * i) / stacks, ph = (2 * Math.PI * j) / slices;
+    return [Math.sin(th) * Math.cos(ph), Math.cos(th), Math.sin(th) * Math.sin(ph)];
+  };
+  for (let i = 0; i < stacks; ++i)
+    for (let j = 0; j < slices; ++j) {
+      const a = at(i, j), b = at(i + 1, j), d = at(i, j + 1), e = at(i + 1, j + 1);
+      for (const n of [a, b, e, a, e, d]) { nor.push(...n); pos.push(...add(c, scale(n, r))); }
+    }
+  return { pos, nor };
+}
+
+// A hull's triangles (flat shaded): positions and face normals.
+function hullMesh(vertices, triangles) {
+  const pos = [], nor = [];
+  const v = (k) => [vertices[3 * k], vertices[3 * k + 1], vertices[3 * k + 2]];
+  for (let t = 0; t + 2 < triangles.length; t += 3) {
+    const a = v(triangles[t]), b = v(triangles[t + 1]), c = v(triangles[t + 2]);
+    const n = unit(cross(sub(b, a), sub(c, a)));
+    for (const p of [a, b, c]) { pos.push(...p); nor.push(...n); }
+  }
+  return { pos, nor };
+}
+
+function program(gl) {
+  const shader = (type, src) => {
+    const s = gl.createShader(type);
+    gl.shaderSource(s, src);
+    gl.compileShader(s);
+    return gl.getShaderParameter(s, gl.COMPILE_STATUS) ? s : null;
+  };
+  const vs = shader(gl.VERTEX_SHADER, VERTEX), fs = shader(gl.FRAGMENT_SHADER, FRAGMENT);
+  if (!vs || !fs) return null;
+  const p = gl.createProgram();
+  gl.attachShader(p, vs);
+  gl.attachShader(p, fs);
+  gl.linkProgram(p);
+  return gl.getProgramParameter(p, gl.LINK_STATUS) ? p : null;
+}
+
+function createPlayer(figure, fallback, data) {
+  const width = fallback.width, height = fallback.height;
+  const canvas = document.createElement('canvas');
+  const ratio = window.devicePixelRatio || 1;
+  canvas.width = Math.round(width * ratio);
+  canvas.height = Math.round(height * ratio);
+  canvas.style.width = `${width}px`;
+  canvas.style.height = `${height}px`;
+  canvas.className = 'asgard-webgl';
+  canvas.setAttribute('aria-label', `${fallback.getAttribute('aria-label') || 'animation'} (WebGL)`);
+  let gl = null;
+  try { gl = canvas.getContext('webgl', { antialias: true, preserveDrawingBuffer: true }); } catch { gl = null; }
+  const prog = gl && program(gl);
+  if (!prog) return null;
+  const loc = (n) => gl.getUniformLocation(prog, n);
+  const u = { model: loc('model'), viewProj: loc('viewProj'), color: loc('color'), ambient: loc('ambient'), eye: loc('eye'),
+    count: loc('count'), lightPos: loc('lightPos'), lightColor: loc('lightColor') };
+  const aPos = gl.getAttribLocation(prog, 'position'), aNor = gl.getAttribLocation(prog, 'normal');
+
+  // Meshes, in body coordinates.
+  const bodies = data.bodies.map((b) => ({
+    name: b.name, pose: b.pose, track: b.track,
+    pieces: b.pieces.map((p) => {
+      const m = p.sphere ? sphereMesh(p.sphere.slice(0, 3), p.sphere[3])
+        : hullMesh(new Float32Array(bytes(p.v)), p.i32 ? new Uint32Array(bytes(p.i)) : new Uint16Array(bytes(p.i)));
+      const buffer = gl.createBuffer();
+      const interleaved = new Float32Array(m.pos.length * 2);
+      for (let k = 0; k < m.pos.length / 3; ++k) interleaved.set([...m.pos.slice(3 * k, 3 * k + 3), ...m.nor.slice(3 * k, 3 * k + 3)], 6 * k);
+      gl.bindBuffer(gl.ARRAY_BUFFER, buffer);
+      gl.bufferData(gl.ARRAY_BUFFER, interleaved, gl.STATIC_DRAW);
+      return { buffer, count: m.pos.length / 3, color: p.color };
+    }),
+  }));
+  const poses = data.poses ? new Float32Array(bytes(data.poses)) : new Float32Array(0);
+  const tracks = bodies.reduce((n, b) => Math.max(n, b.track === undefined ? 0 : b.track + 1), 0);
+
+  // Lights as the editor's viewer has them: the scene's, or a sky and a sun.
+  const lights = (data.lights && data.lights.length ? data.lights : null);
+  const lightPos = new Float32Array(16), lightColor = new Float32Array(12);
+  let count = 0, ambient = [0.5, 0.5, 0.5];
+  if (lights) {
+    for (const l of lights.slice(0, 4)) {
+      lightPos.set(l.directional ? [...l.direction, 0] : [...l.position, 1], 4 * count);
+      lightColor.set(scale(l.color, 0.8 * l.intensity), 3 * count);
+      ++count;
+    }
+  } else {
+    ambient = [0.4, 0.4, 0.42];
+    lightPos.set([-30, -50, -40, 0, 20, 10, 30, 0], 0);
+    lightColor.set([0.6, 0.6, 0.58, 0.15, 0.15, 0.17], 0);
+    count = 2;
+  }
+
+  // The camera: asgard render's (the poster's), then turned and zoomed.
+  const home = { eye: data.camera.eye, target: data.camera.target, up: unit(data.camera.up) };
+  let cam = { ...home };
+  const fovY = () => {
+    const aspect = width / height, fit = data.camera.tan_half_fov;
+    return 2 * Math.atan(aspect >= 1 ? fit : fit / aspect);
+  };
+  function viewProj() {
+    const f = unit(sub(cam.target, cam.eye));
+    const s = unit(cross(f, cam.up)), up = cross(s, f);
+    const d = Math.hypot(...sub(cam.target, cam.eye));
+    const view = new Float32Array([s[0], up[0], -f[0], 0, s[1], up[1], -f[1], 0, s[2], up[2], -f[2], 0,
+      -dot(s, cam.eye), -dot(up, cam.eye), dot(f, cam.eye), 1]);
+    const near = d / 50, far = d * 20, t = 1 / Math.tan(fovY() / 2);
+    const proj = new Float32Array([t / (width / height), 0, 0, 0, 0, t, 0, 0,
+      0, 0, (far + near) / (near - far), -1, 0, 0, (2 * far * near) / (near - far), 0]);
+    return multiply(proj, view);
+  }
+
+  // A body's pose at time t: its fixed pose, or its track interpolated
+  // between the two frames around t (positions linearly, rotations by a
+  // normalized linear mix along the shorter arc).
+  function poseAt(b, t) {
+    if (b.track === undefined) return { p: b.pose.slice(0, 3), q: b.pose.slice(3, 7) };
+    const n = data.n, span = data.t1 - data.t0;
+    const x = n > 1 && span > 0 ? Math.min(Math.max((t - data.t0) / span, 0), 1) * (n - 1) : 0;
+    const i = Math.min(Math.floor(x), n - 1), j = Math.min(i + 1, n - 1), s = x - i;
+    const at = (f, k) => poses[(f * tracks + b.track) * 7 + k];
+    const p = [0, 1, 2].map((k) => at(i, k) * (1 - s) + at(j, k) * s);
+    const sign = [3, 4, 5, 6].reduce((acc, k) => acc + at(i, k) * at(j, k), 0) < 0 ? -1 : 1;
+    let q = [3, 4, 5, 6].map((k) => at(i, k) * (1 - s) + sign * at(j, k) * s);
+    const len = Math.hypot(...q) || 1;
+    q = q.map((v) => v / len);
+    return { p, q };
+  }
+
+  let shown = data.t0;
+  function draw(t = shown) {
+    shown = t;
+    gl.viewport(0, 0, canvas.width, canvas.height);
+    gl.clearColor(0.949, 0.949, 0.961, 1);
+    gl.clear(gl.COLOR_BUFFER_BIT | gl.DEPTH_BUFFER_BIT);
+    gl.enable(gl.DEPTH_TEST);
+    gl.useProgram(prog);
+    gl.uniformMatrix4fv(u.viewProj, false, viewProj());
+    gl.uniform3fv(u.ambient, ambient);
+    gl.uniform3fv(u.eye, cam.eye);
+    gl.uniform1i(u.count, count);
+    gl.uniform4fv(u.lightPos, lightPos);
+    gl.uniform3fv(u.lightColor, lightColor);
+    for (const b of bodies) {
+      const { p, q } = poseAt(b, t);
+      gl.uniformMatrix4fv(u.model, false, poseMatrix(p, q));
+      for (const piece of b.pieces) {
+        gl.uniform3fv(u.color, piece.color);
+        gl.bindBuffer(gl.ARRAY_BUFFER, piece.buffer);
+        gl.enableVertexAttribArray(aPos);
+        gl.vertexAttribPointer(aPos, 3, gl.FLOAT, false, 24, 0);
+        gl.enableVertexAttribArray(aNor);
+        gl.vertexAttribPointer(aNor, 3, gl.FLOAT, false, 24, 12);
+        gl.drawArrays(gl.TRIANGLES, 0, piece.count);
+      }
+    }
+  }
+
+  // Where a body's centre of mass is drawn at time t, in CSS pixels from
+  // the canvas's top left (for tests and for readers of the page).
+  function project(name, t = shown) {
+    const b = bodies.find((x) => x.name === name);
+    if (!b) return null;
+    const { p } = poseAt(b, t);
+    const m = viewProj();
+    const c = [0, 1, 2, 3].map((r) => m[r] * p[0] + m[4 + r] * p[1] + m[8 + r] * p[2] + m[12 + r]);
+    return [((c[0] / c[3] + 1) / 2) * width, ((1 - c[1] / c[3]) / 2) * height];
+  }
+
+  // Virtual trackball: a drag of the pointer by (dx, dy) pixels turns the
+  // eye about the target, about the axis in the screen plane perpendicular
+  // to the drag, by the drag's length over the canvas's half height in
+  // radians; the wheel moves the eye toward the target.
+  function orbit(dx, dy) {
+    const f = unit(sub(cam.target, cam.eye)), s = unit(cross(f, cam.up)), up = cross(s, f);
+    const len = Math.hypot(dx, dy);
+    if (!len) return;
+    const axis = unit(add(scale(up, -dx / len), scale(s, -dy / len)));
+    const angle = len / (height / 2);
+    cam = { eye: add(cam.target, turn(sub(cam.eye, cam.target), axis, angle)), target: cam.target, up: unit(turn(up, axis, angle)) };
+    draw();
+  }
+  function zoom(factor) {
+    cam = { ...cam, eye: add(cam.target, scale(sub(cam.eye, cam.target), factor)) };
+    draw();
+  }
+  let last = null;
+  canvas.addEventListener('pointerdown', (e) => { last = [e.clientX, e.clientY]; canvas.setPointerCapture(e.pointerId); });
+  canvas.addEventListener('pointermove', (e) => {
+    if (!last) return;
+    orbit(e.clientX - last[0], e.clientY - last[1]);
+    last = [e.clientX, e.clientY];
+  });
+  canvas.addEventListener('pointerup', () => { last = null; });
+  canvas.addEventListener('wheel', (e) => { e.preventDefault(); zoom(Math.pow(1.0015, e.deltaY)); }, { passive: false });
+  canvas.addEventListener('dblclick', () => { cam = { ...home }; draw(); });
+
+  fallback.style.display = 'none';
+  fallback.parentNode.insertBefore(canvas, fallback);
+  figure.dataset.renderer = 'webgl';
+  draw(data.t0);
+  return { canvas, draw, project, orbit, zoom, times: { t0: data.t0, t1: data.t1, n: data.n } };
+}
+
+window.asgardPlayer = function (figure, fallback, data) {
+  try {
+    return createPlayer(figure, fallback, data);
+  } catch (e) {
+    figure.dataset.webglError = String(e);
+    return null;
+  }
+};
