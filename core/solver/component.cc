@@ -920,6 +920,7 @@ void Component::Restart() {
   SampleInfo info;
   info.h_next = sim_.restart_step();
   info.restart = true;
+  info.jumps_seen = jump_generation_;
   info.implicit = wave_.info(k).implicit;
   wave_.Append(t, y_.data(), rate_.data(), info);
   ++counters_.restarts;
@@ -935,7 +936,14 @@ bool Component::IsBreakpoint(double t) const {
 bool Component::PendingRestart() const {
   if (wave_.empty()) return false;
   const int k = wave_.size() - 1;
-  return !wave_.info(k).restart && IsBreakpoint(wave_.time(k));
+  const SampleInfo& info = wave_.info(k);
+  if (!info.restart) return IsBreakpoint(wave_.time(k));
+  // A restart sample is stale when a jump at its time came after it (an
+  // impact at the very start, where the first sample is a restart).
+  if (info.jumps_seen == jump_generation_) return false;
+  for (const Jump& j : jumps_)
+    if (j.t == wave_.time(k) && j.generation > info.jumps_seen) return true;
+  return false;
 }
 
 double Component::NextBreakpoint(double t) const {
@@ -964,6 +972,7 @@ double Component::Truncate(double t, bool strict) {
 void Component::CopyResults(const Component& from) {
   wave_ = from.wave_;
   jumps_ = from.jumps_;
+  jump_generation_ = from.jump_generation_;
   holds_ = from.holds_;
   last_mode_ = nullptr;
   jac_sample_ = -1;
@@ -971,12 +980,14 @@ void Component::CopyResults(const Component& from) {
 
 void Component::AddJump(double t, int local, double value) {
   // A later jump of the same variable at the same time supersedes it.
+  ++jump_generation_;
   for (Jump& j : jumps_)
     if (j.t == t && j.local == local) {
       j.value = value;
+      j.generation = jump_generation_;
       return;
     }
-  jumps_.push_back({t, local, value});
+  jumps_.push_back({t, local, value, jump_generation_});
 }
 
 void Component::AddHold(double t, int local, double value) {

@@ -260,8 +260,10 @@ class Component {
     double t;
     int local;
     double value;
+    long generation;  // jump_generation_ when it was added or last changed
   };
   std::vector<Jump> jumps_;
+  long jump_generation_ = 0;
   struct Hold {
     double from;
     double to;

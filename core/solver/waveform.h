@@ -43,6 +43,7 @@ struct SampleInfo {
   uint8_t stiff_votes = 0;  // steps that argued for the other method
   uint8_t calm_votes = 0;   // explicit: consecutive steps that did not look stiff
   double err_prev = 1e-4;   // last accepted error estimate (PI step control)
+  long jumps_seen = 0;      // restart: the component's jump generation it applied
 };
 
 class Waveform {

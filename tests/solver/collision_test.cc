@@ -598,14 +598,13 @@ TEST(Contact, NewtonsCradleOfFiveTouchingBallsSendsTheLastOffAtTheFirstsSpeed) {
   ExpectCradle(1.0);
 }
 
-// Known gap (core/solver): all five touching at the start, the first already
-// moving, the first impact is at t0.  The velocity jump the monitor writes
-// there (Simulation::SetValueAt at t0) is never applied — the component's
-// only sample at t0 is already a restart sample, so no restart picks the
-// jump up — and the monitor finds the same impact again until it gives up
-// after 1000 ("do not resolve at t=0").  Two touching balls, one moving,
-// show it too; a gap of 1e-6 (impact just after t0) does not.
-TEST(Contact, DISABLED_NewtonsCradleWhoseFirstImpactIsAtTheStart) { ExpectCradle(0.0); }
+// All five touching at the start, the first already moving: the first
+// impact is at t0, where the component's only sample is already a restart
+// sample.  The velocity jump written there must still restart it (a restart
+// sample is stale when a jump at its time came after it); before, the jump
+// was never applied and the monitor found the same impact until it gave up
+// after 1000 ("do not resolve at t=0").
+TEST(Contact, NewtonsCradleWhoseFirstImpactIsAtTheStart) { ExpectCradle(0.0); }
 
 // A unit cube balanced on an edge, turned π/4 + tilt about z so that its
 // centre of mass is off the edge by (√2/2) tilt: gravity tips it about the
