@@ -99,8 +99,8 @@ void FuseChains(const std::vector<std::vector<int>>& reads, Partition& p) {
     while (parent[c] != c) c = parent[c] = parent[parent[c]];
     return c;
   };
-  std::vector<int> last(nc, -1);  // per root: the group's last member
-  std::vector<int> head(nc);      // per component: its group's root
+  // Every union makes the reader, which comes after all it reads, the root:
+  // a group's root is its last member.
   for (int c = 0; c < nc; ++c) {
     const auto& up = p.upstream[c];
     bool alone = !up.empty();
@@ -108,14 +108,12 @@ void FuseChains(const std::vector<std::vector<int>>& reads, Partition& p) {
     if (alone)
       for (int u : up) parent[find(u)] = c;
   }
-  for (int c = 0; c < nc; ++c) {
-    head[c] = find(c);
-    last[head[c]] = std::max(last[head[c]], c);
-  }
+  std::vector<int> head(nc);  // per component: its group's root (last member)
+  for (int c = 0; c < nc; ++c) head[c] = find(c);
   std::vector<std::vector<int>> fused;
   std::vector<int> slot(nc, -1);  // head → index in `fused`
   for (int c = 0; c < nc; ++c) {
-    if (last[head[c]] != c) continue;  // placed with the chain's last member
+    if (head[c] != c) continue;  // placed with the group's last member
     slot[head[c]] = static_cast<int>(fused.size());
     fused.emplace_back();
   }
