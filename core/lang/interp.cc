@@ -688,7 +688,7 @@ void Run(EvalContext& ctx) {
       break;
     }
     if (limit_hit) {
-      if (PastDeadline(deadline)) {
+      if (Tcl_LimitTypeExceeded(ctx.child, TCL_LIMIT_TIME) || PastDeadline(deadline)) {
         ctx.AddError(
             "scene exceeded its time limit (" + FormatSeconds(ctx.limits.time_limit_ms) + ")",
             span);
