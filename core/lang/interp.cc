@@ -36,6 +36,7 @@
 #include <cmath>
 #include <cstdarg>
 #include <cstdio>
+#include <cstdlib>
 #include <cstring>
 #include <mutex>
 #include <unordered_map>
@@ -116,9 +117,19 @@ void CheckIntegerBits(long bits) {
              kMaxIntegerBits, static_cast<long>(kMaxIntegerBits * 0.30103));
 }
 
+// libtcl's own definition of a wrapped primitive.  The executable links
+// libtcl dynamically, so the next definition in lookup order is always
+// there; if a build ever links Tcl statically the wrappers would be the only
+// definitions, and forwarding to null must not be what finds that out.
 template <typename Fn>
 Fn Real(const char* name) {
-  return reinterpret_cast<Fn>(dlsym(RTLD_NEXT, name));
+  void* const next = dlsym(RTLD_NEXT, name);
+  if (next == nullptr) {
+    std::fprintf(stderr, "asgard: libtcl's %s was not found (%s); Tcl must be linked dynamically\n",
+                 name, dlerror());
+    std::abort();
+  }
+  return reinterpret_cast<Fn>(next);
 }
 
 void InitTcl() {
