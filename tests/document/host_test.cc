@@ -54,6 +54,7 @@ TEST(Plugins, TheAsgardMediumLoadsWithAllInterfaces) {
   EXPECT_NE(m.node(), nullptr);
   EXPECT_NE(m.presentation(), nullptr);
   EXPECT_NE(m.rendition(), nullptr);
+  EXPECT_NE(m.node_rpc(), nullptr);  // ABI 1.1
 }
 
 TEST(Plugins, AnotherMajorVersionIsRefusedWithAClearMessage) {
@@ -92,6 +93,11 @@ TEST(Plugins, APluginReturningErrorsDoesNotStopTheHost) {
   EXPECT_FALSE(doc.SetText(ok, "new"));
   EXPECT_NE(ok.message.find("cannot encode"), std::string::npos);
   EXPECT_TRUE(doc.Frame(ok, ASGARD_DEVICE_PAGE, 10, 10, 0, 0).empty());
+  // An ABI 1.0 medium takes no requests of its own: said, not a crash.
+  std::string result;
+  EXPECT_EQ(doc.Call(ok, "scene_state", "{}", &result), ASGARD_ERR_UNSUPPORTED);
+  EXPECT_NE(ok.message.find("takes no requests of its own (medium ABI 1.1)"), std::string::npos)
+      << ok.message;
   EXPECT_EQ(document::Write(doc.document()), bytes);
 }
 

@@ -5,11 +5,14 @@
 // a second view (the document page's socket) hears the new motion; through
 // it all dochost runs exactly one asgard-core, and after that slave is
 // killed the next action starts one new slave that has the edited text.
-// Node only (its WebSocket, Node 20's --experimental-websocket).
-import { readFileSync, readdirSync } from 'node:fs';
-import { checker, startStudio, sleep, waitFor } from './common.mjs';
+// Node (its WebSocket, Node 20's --experimental-websocket); then, where
+// Chromium is, the document view's toolbar in the browser.
+import { createHash } from 'node:crypto';
+import { existsSync, readFileSync, readdirSync } from 'node:fs';
+import { join } from 'node:path';
+import { checker, launchBrowser, startStudio, sleep, waitFor } from './common.mjs';
 
-const [dochost, doc] = process.argv.slice(2);
+const [dochost, doc, outDir] = process.argv.slice(2);
 const { check, failures } = checker();
 const { url, port, proc } = await startStudio(dochost, doc, 'serve');
 
@@ -28,8 +31,8 @@ function slaves() {
   return out;
 }
 
-async function frame(t) {
-  const r = await fetch(`${url}frame?a=0&t=${t}`);
+async function frame(t, handles = 0) {
+  const r = await fetch(`${url}frame?a=0&t=${t}&handles=${handles}`);
   return { status: r.status, live: r.headers.get('x-asgard-live'), caption: r.headers.get('x-asgard-status'),
     interval: r.headers.get('x-asgard-interval'), type: r.headers.get('content-type'),
     bytes: Buffer.from(await r.arrayBuffer()) };
@@ -92,6 +95,62 @@ try {
   check(restarted.length === 1 && restarted[0] !== same[0], `one new asgard-core (${same} → ${restarted})`);
   const again = await frame(1);
   check(again.live === '1' && again.bytes.equals(after.bytes), `the restarted slave draws the edited scene (${again.caption})`);
+
+  // The document view in Chromium (when there is one): the picture is the
+  // rendition's, the slider draws another time, and an edit made in another
+  // view redraws it (the page hears the `scene` event); Recompute and
+  // Handles redraw through the same slave.
+  if (existsSync('/usr/bin/chromium') && process.env.ASGARD_WEB_MODULES &&
+      existsSync(join(process.env.ASGARD_WEB_MODULES, 'playwright-core/package.json'))) {
+    const { context, close } = await launchBrowser();
+    try {
+      const page = context.pages()[0] ?? await context.newPage();
+      const errors = [];
+      page.on('pageerror', (e) => errors.push(String(e)));
+      await page.goto(url);
+      const drawn = () => page.evaluate(() => Number(document.querySelector('figure.rendition').dataset.drawn || 0));
+      // The PNG bytes the page shows, as hex of a SHA-256, and the node side's.
+      const shown = () => page.evaluate(async () => {
+        const b = await (await fetch(document.querySelector('figure.rendition img').src)).arrayBuffer();
+        return [...new Uint8Array(await crypto.subtle.digest('SHA-256', b))].map((x) => x.toString(16).padStart(2, '0')).join('');
+      });
+      const digest = (bytes) => createHash('sha256').update(bytes).digest('hex');
+      check(await waitFor(async () => (await drawn()) >= 1, 'the first picture'), 'the document view draws the animation');
+      check(await shown() === digest((await frame(0)).bytes), 'its picture is the rendition at t = 0');
+      await page.screenshot({ path: join(outDir, '1-document-view.png') });
+      let n = await drawn();
+      await page.locator('figure.rendition .time').fill('1000');
+      check(await waitFor(async () => (await drawn()) > n, 'the slider'), 'moving the slider draws again');
+      const atEnd = digest((await frame(3)).bytes);
+      check(await waitFor(async () => (await shown()) === atEnd, 'the picture at t = 3'), 'the picture at the slider\'s end is the rendition at t = 3');
+      check((await page.textContent('figure.rendition .t')) === 't = 3.00 s', 'the time is shown');
+      n = await drawn();
+      const other = await view();
+      await other.call('set_parameter', { element: 'b3', param: 'init_pos', values: [1, -2, 0] });
+      await other.call('simulate');
+      check(await waitFor(async () => (await drawn()) > n, 'the scene event'), 'an edit simulated in another view redraws the page');
+      const edited = digest((await frame(3)).bytes);
+      check(await waitFor(async () => (await shown()) === edited, 'the edited picture'), 'and the page shows the edited rendition');
+      await page.screenshot({ path: join(outDir, '2-edited-elsewhere.png') });
+      n = await drawn();
+      await page.click('figure.rendition .recompute');
+      check(await waitFor(async () => (await drawn()) > n, 'recompute'), 'Recompute redraws');
+      check((await page.textContent('figure.rendition .status')).startsWith('2 bodies'), `the status after Recompute: ${await page.textContent('figure.rendition .status')}`);
+      n = await drawn();
+      await page.check('figure.rendition .handles');
+      check(await waitFor(async () => (await drawn()) > n, 'handles'), 'Handles redraws');
+      const withHandles = digest((await frame(3, 1)).bytes);
+      check(withHandles !== edited && await waitFor(async () => (await shown()) === withHandles, 'handles drawn'),
+        'with the position handles drawn (the rendition with handles)');
+      await page.screenshot({ path: join(outDir, '3-handles.png') });
+      check(errors.length === 0, `no page errors (${errors.join('; ')})`);
+      other.ws.close();
+    } finally {
+      await close();
+    }
+  } else {
+    console.log('SKIP the document view in Chromium: /usr/bin/chromium or playwright-core is missing');
+  }
   editor.ws.close(); documentView.ws.close();
 } finally {
   proc.kill('SIGTERM');
