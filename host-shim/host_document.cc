@@ -306,10 +306,7 @@ bool HostDocument::EnsureNode(Embedded& item) {
   const int32_t s = api->create(item.text.data(), item.text.size(), &o, &item.node, &e);
   if (item.node) RefreshStatus(item);
   if (s != ASGARD_OK) item.message = e.message;
-  // A slave that died before the node existed (loading its text, say) is a
-  // crash like any other: Simulate starts it again once.
-  if (!item.node && (s == ASGARD_ERR_SLAVE || s == ASGARD_ERR_PROTOCOL))
-    item.status.state = ASGARD_NODE_CRASHED;
+  if (!item.node) item.status = asgard_node_status{};  // nothing of a node stopped before
   if (item.medium->presentation() && item.node) {
     int32_t w = 0, h = 0;
     asgard_error pe{};
@@ -336,7 +333,6 @@ bool HostDocument::Simulate(Embedded& item) {
 }
 
 bool HostDocument::SimulateOnce(Embedded& item) {
-  if (!item.node) item.status.state = ASGARD_NODE_LOADED;  // not a crash of a node long gone
   if (!EnsureNode(item)) return false;
   std::pair<const HostOptions*, const Embedded*> user(&options_, &item);
   asgard_error e{};
@@ -488,16 +484,15 @@ int32_t HostDocument::Call(Embedded& item, const std::string& method, const std:
                                : item.message;
     return ASGARD_ERR_UNSUPPORTED;
   }
+  // A scene with errors still has a node: the request may fix its text.
+  if (!item.node && !EnsureNode(item) && !item.node) return ASGARD_ERR_SLAVE;
   RefreshStatus(item);
   asgard_error e{};
-  if (item.node &&
-      (item.status.state == ASGARD_NODE_CRASHED || item.status.state == ASGARD_NODE_HUNG) &&
+  if ((item.status.state == ASGARD_NODE_CRASHED || item.status.state == ASGARD_NODE_HUNG) &&
       item.medium->node()->restart(item.node, &e) != ASGARD_OK && e.code != ASGARD_ERR_SCENE) {
     Fail(item, e);
     return e.code;
   }
-  // A scene with errors still has a node: the request may fix its text.
-  if (!item.node && !EnsureNode(item) && !item.node) return ASGARD_ERR_SLAVE;
   item.last_use = ++clock_;
   asgard_bytes out{};
   e = asgard_error{};

@@ -41,6 +41,7 @@ struct asgard_node {
   double timeout = 60.0;
   int memory_mib = asgard::protocol::kDefaultSlaveMemoryMiB;
   std::unique_ptr<SlaveProcess> slave;
+  bool spawned = false;  // a slave process was started (at least once)
   int generation = 0;
   int32_t state = ASGARD_NODE_LOADED;
   std::string message;
@@ -236,6 +237,7 @@ int32_t Start(asgard_node* node, asgard_error* error) {
     node->message = node->slave->error();
     return SetError(error, ASGARD_ERR_SLAVE, node->message);
   }
+  node->spawned = true;
   return Load(node, error);
 }
 
@@ -284,8 +286,11 @@ int32_t NodeCreate(const char* text, size_t size, const asgard_node_options* opt
         options->slave_memory_mb > 0)
       node->memory_mib = static_cast<int>(std::clamp(options->slave_memory_mb, 16.0, 1e6));
     const int32_t s = Start(node.get(), error);
-    // A node whose text has errors still exists (it can be updated).
-    if (s != ASGARD_OK && s != ASGARD_ERR_SCENE) return s;
+    // A node whose text has errors still exists (it can be updated), and so
+    // does one whose slave started but died or hung loading the text: it is
+    // CRASHED or HUNG like any other, and restart() starts it again.  Only a
+    // slave that could not be started at all leaves no node.
+    if (s != ASGARD_OK && s != ASGARD_ERR_SCENE && !node->spawned) return s;
     *out = node.release();
     return s;
   });

@@ -382,6 +382,26 @@ TEST(Slave, AMissingSlaveProgramIsAStatusNotACrash) {
   asgard_error e{};
   EXPECT_EQ(Asgard().node()->create("x", 1, &o, &n.node, &e), ASGARD_ERR_SLAVE);
   EXPECT_NE(std::string(e.message).find("cannot start"), std::string::npos) << e.message;
+  EXPECT_EQ(n.node, nullptr) << "nothing started, nothing to restart";
+}
+
+// A slave that dies loading the text leaves a CRASHED node (before, no
+// node: nothing the host could restart), and restart() brings it back.
+TEST(Slave, ASlaveThatDiesLoadingLeavesACrashedNodeThatRestarts) {
+  Node n;
+  ASSERT_EQ(setenv("ASGARD_CORE_FAULT", "exit-on-load", 1), 0);
+  const int32_t s = Create(Scene(), n);
+  unsetenv("ASGARD_CORE_FAULT");
+  EXPECT_EQ(s, ASGARD_ERR_SLAVE);
+  ASSERT_NE(n.node, nullptr);
+  EXPECT_EQ(Status(n.node).state, ASGARD_NODE_CRASHED);
+  EXPECT_NE(std::string(Status(n.node).message).find("exited with status 3 while answering 'load'"),
+            std::string::npos)
+      << Status(n.node).message;
+  asgard_error e{};
+  ASSERT_EQ(Asgard().node()->restart(n.node, &e), ASGARD_OK) << e.message;
+  ASSERT_EQ(Asgard().node()->simulate(n.node, nullptr, nullptr, &e), ASGARD_OK) << e.message;
+  EXPECT_EQ(Status(n.node).state, ASGARD_NODE_SIMULATED);
 }
 
 // ---- the host document ----

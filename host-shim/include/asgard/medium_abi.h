@@ -128,7 +128,10 @@ typedef struct asgard_node_status {
 
 typedef struct asgard_node_v1 {
   uint32_t struct_size;
-  /* Starts the node (and its slave) with the medium text. */
+  /* Starts the node (and its slave) with the medium text.  On
+   * ASGARD_ERR_SCENE, and when the slave started but died or hung loading
+   * the text (state CRASHED or HUNG; restart to continue), *node is set
+   * though the status is not ASGARD_OK; the host destroys it as any other. */
   int32_t (*create)(const char* text, size_t size, const asgard_node_options* options,
                     asgard_node** node, asgard_error* error);
   /* Also destroys the node's renditions. */
