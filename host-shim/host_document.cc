@@ -472,10 +472,6 @@ bool HostDocument::Command(Embedded& item, const std::string& line, std::string*
   return true;
 }
 
-}  // namespace asgard::host
-
-namespace asgard::host {
-
 int32_t HostDocument::Call(Embedded& item, const std::string& method, const std::string& params,
                            std::string* result) {
   if (!item.medium || !item.medium->node_rpc()) {

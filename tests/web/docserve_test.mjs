@@ -63,6 +63,8 @@ try {
   check(first.status === 200 && first.type === 'image/png' && first.live === '1',
     `GET /frame draws a live PNG (${first.status}, ${first.type}, live ${first.live}: ${first.caption})`);
   check(first.interval === '0 3', `the rendition says its interval (${first.interval})`);
+  check((await fetch(`${url}frame?a=0&t=abc`)).status === 400, 'a frame at a time that is not a number is refused (400)');
+  check((await fetch(`${url}frame?a=7&t=0`)).status === 404, 'a frame of an animation the document does not have is 404');
   const before = slaves();
   check(before.length === 1, `one asgard-core for the document view (${before.length})`);
 
