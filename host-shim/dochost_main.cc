@@ -102,8 +102,10 @@ Options:
                        that change OUT are still printed
   -h, --help           this help
 
-A slave that dies while simulating or drawing is started again once; if it
-dies again, its animation is shown by its poster frame.
+A slave that dies while loading its text, simulating or drawing is started
+again once; if it dies again, its animation is shown by its poster frame.
+Under serve, each animation's editor and its picture in the document view
+share the animation's slave; one that dies starts again at the next action.
 
 Exit status 0 on success; 1 when IN cannot be read, OUT cannot be written or
 a verb fails; 2 on bad usage; 3 when OUT was written but is not all that IN
