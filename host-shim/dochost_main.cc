@@ -18,6 +18,7 @@
 #include <cmath>
 #include <cstdio>
 #include <iostream>
+#include <limits>
 #include <optional>
 #include <set>
 #include <string>
@@ -29,6 +30,7 @@
 #include "host-shim/host_document.h"
 #include "host-shim/html.h"
 #include "host-shim/layout.h"
+#include "host-shim/serve_host.h"
 #include "serve/launch.h"
 
 namespace asgard::host {
@@ -100,8 +102,10 @@ Options:
                        that change OUT are still printed
   -h, --help           this help
 
-A slave that dies while simulating or drawing is started again once; if it
-dies again, its animation is shown by its poster frame.
+A slave that dies while loading its text, simulating or drawing is started
+again once; if it dies again, its animation is shown by its poster frame.
+Under serve, each animation's editor and its picture in the document view
+share the animation's slave; one that dies starts again at the next action.
 
 Exit status 0 on success; 1 when IN cannot be read, OUT cannot be written or
 a verb fails; 2 on bad usage; 3 when OUT was written but is not all that IN
@@ -261,10 +265,6 @@ struct Host {
     if (!ok) Report(item);
     return ok;
   }
-  void SimulateAll() {
-    for (Embedded& item : doc->items())
-      if (item.medium) Ready(item);
-  }
   double TimeFor(const Embedded& item) const {
     return std::clamp(o.time.value_or(item.t0), item.t0, std::max(item.t0, item.t1));
   }
@@ -286,9 +286,10 @@ struct Host {
   std::vector<RegionContent> Regions() {
     auto& items = doc->items();
     std::vector<RegionContent> regions(items.size());
-    // Last first: the slaves still running (the last ones simulated) draw
-    // before they are stopped to make room for the earlier ones again.
-    for (size_t k = items.size(); k-- > 0;) {
+    // Each animation is drawn right after it is simulated, in document
+    // order, before its slave can be stopped to make room for a later one's:
+    // with more animations than --slaves, each still simulates once.
+    for (size_t k = 0; k < items.size(); ++k) {
       Embedded& item = items[k];
       RegionContent& r = regions[k];
       bool live = false;
@@ -417,9 +418,10 @@ struct Host {
     }
     if (ext != "pdf" && ext != "png")
       return Usage("OUT must end in .pdf, .png, .html, .xml or .ens");
-    SimulateAll();  // the pages need every animation's size
-    const auto pages = Paginate(Blocks(*doc), *doc);
+    // The pictures first: drawing starts each node, which gives the
+    // animation's size the pages need.
     const auto regions = Regions();
+    const auto pages = Paginate(Blocks(*doc), *doc);
     std::vector<std::string> written;
     const bool ok = ext == "pdf" ? WritePdf(out, pages, regions, &error)
                                  : WritePngPages(out, pages, regions, o.dpi, &written, &error);
@@ -558,7 +560,23 @@ int ServeCommand(const std::vector<std::string>& args) {
     std::cerr << "dochost serve: " << error << "\nUsage:\n" << serve::kServeUsage;
     return 2;
   }
-  return serve::ServeDocument(file, lo);
+  // The editor and the document view's renditions share each animation's
+  // slave: the medium's nodes, with room for one per animation (each Hub
+  // calls only its own item, from its own thread).
+  auto loaded = document::LoadDocument(file);
+  if (!loaded.document) {
+    std::cerr << "dochost serve: " << loaded.error << "\n";
+    return 1;
+  }
+  MediumRegistry registry(MediumRegistry::DefaultSearchPath());
+  HostOptions ho;
+  ho.slave_path = lo.core;
+  ho.max_slaves = std::numeric_limits<int>::max();
+  ho.name = file;
+  std::vector<std::string> warnings;
+  HostDocument doc(std::move(*loaded.document), registry, ho, &warnings);
+  for (const auto& w : warnings) std::cerr << "dochost serve: " << w << "\n";
+  return serve::ServeDocument(file, lo, AttachTo(doc));
 }
 
 int Main(const std::vector<std::string>& args) {

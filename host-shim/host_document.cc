@@ -181,6 +181,8 @@ int HostDocument::running_slaves() const {
 
 void HostDocument::MakeRoom(const Embedded& keep) {
   const int most = std::max(1, options_.max_slaves);
+  // Room for every item: nothing to stop, and no other item is touched.
+  if (static_cast<size_t>(most) >= items_.size()) return;
   while (running_slaves() >= most) {
     Embedded* oldest = nullptr;
     for (Embedded& item : items_)
@@ -304,6 +306,7 @@ bool HostDocument::EnsureNode(Embedded& item) {
   const int32_t s = api->create(item.text.data(), item.text.size(), &o, &item.node, &e);
   if (item.node) RefreshStatus(item);
   if (s != ASGARD_OK) item.message = e.message;
+  if (!item.node) item.status = asgard_node_status{};  // nothing of a node stopped before
   if (item.medium->presentation() && item.node) {
     int32_t w = 0, h = 0;
     asgard_error pe{};
@@ -467,6 +470,38 @@ bool HostDocument::Command(Embedded& item, const std::string& line, std::string*
   const std::string r = item.medium->Take(out);
   if (reply) *reply = r;
   return true;
+}
+
+int32_t HostDocument::Call(Embedded& item, const std::string& method, const std::string& params,
+                           std::string* result) {
+  if (!item.medium || !item.medium->node_rpc()) {
+    item.message = item.medium ? "the medium " + item.medium->path() +
+                                     " takes no requests of its own (medium ABI 1.1)"
+                               : item.message;
+    return ASGARD_ERR_UNSUPPORTED;
+  }
+  // A scene with errors still has a node: the request may fix its text.
+  if (!item.node && !EnsureNode(item) && !item.node) return ASGARD_ERR_SLAVE;
+  RefreshStatus(item);
+  asgard_error e{};
+  if ((item.status.state == ASGARD_NODE_CRASHED || item.status.state == ASGARD_NODE_HUNG) &&
+      item.medium->node()->restart(item.node, &e) != ASGARD_OK && e.code != ASGARD_ERR_SCENE) {
+    Fail(item, e);
+    return e.code;
+  }
+  item.last_use = ++clock_;
+  asgard_bytes out{};
+  e = asgard_error{};
+  const int32_t s = item.medium->node_rpc()->call(item.node, method.c_str(), params.data(),
+                                                  params.size(), &out, &e);
+  RefreshStatus(item);
+  if (s != ASGARD_OK) {
+    item.message = e.message;
+    return s;
+  }
+  const std::string r = item.medium->Take(out);
+  if (result) *result = r;
+  return ASGARD_OK;
 }
 
 }  // namespace asgard::host

@@ -16,6 +16,7 @@
 
 #include <cairo.h>
 
+#include <atomic>
 #include <cstdint>
 #include <functional>
 #include <map>
@@ -102,9 +103,8 @@ class HostDocument {
   const Embedded* ItemAt(const std::vector<size_t>& path) const;
 
   // Starts the node (when needed) and simulates; a slave that dies while
-  // simulating is restarted once (one that cannot start, or dies loading the
-  // text, is not: it has no node to restart).  False with item.message set on
-  // any failure; the host goes on.
+  // loading its text or simulating is started again once.  False with
+  // item.message set on any failure; the host goes on.
   bool Simulate(Embedded& item);
   // Slaves running now (at most HostOptions::max_slaves).
   int running_slaves() const;
@@ -122,6 +122,15 @@ class HostDocument {
   void SetPoster(Embedded& item, const Picture& picture);
   // A text command to the node (e.g. "handles on").
   bool Command(Embedded& item, const std::string& line, std::string* reply);
+  // A request in the medium's own protocol to the item's slave (ABI 1.1,
+  // asgard_node_rpc_v1): `params` and `*result` are JSON texts.  The node is
+  // started when it has none, and a slave that died or hung is started again
+  // first (with the node's text, edits included): the next action restarts
+  // it.  Returns the status; on failure item.message says why.  Calls for
+  // different items may come from different threads when max_slaves covers
+  // every item (no slave is then stopped to make room for another's).
+  int32_t Call(Embedded& item, const std::string& method, const std::string& params,
+               std::string* result);
   void RefreshStatus(Embedded& item);
 
  private:
@@ -139,7 +148,7 @@ class HostDocument {
   MediumRegistry& registry_;
   HostOptions options_;
   std::vector<Embedded> items_;
-  long clock_ = 0;  // counts node uses, for Embedded::last_use
+  std::atomic<long> clock_ = 0;  // counts node uses, for Embedded::last_use
 };
 
 }  // namespace asgard::host

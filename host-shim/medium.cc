@@ -68,6 +68,7 @@ std::unique_ptr<Medium> Medium::Load(const std::string& path, const std::string&
   m->node_ = m->Interface<asgard_node_v1>(ASGARD_IFACE_NODE);
   m->presentation_ = m->Interface<asgard_presentation_v1>(ASGARD_IFACE_PRESENTATION);
   m->rendition_ = m->Interface<asgard_rendition_v1>(ASGARD_IFACE_RENDITION);
+  m->node_rpc_ = m->Interface<asgard_node_rpc_v1>(ASGARD_IFACE_NODE_RPC);
   if (!m->storage_ || !m->storage_->decode || !m->storage_->encode)
     return fail("it provides no complete storage interface (seed 6.1 requires one)");
   // An interface with a missing function is treated as not provided.
@@ -79,7 +80,8 @@ std::unique_ptr<Medium> Medium::Load(const std::string& path, const std::string&
   if (m->rendition_ && !(m->rendition_->create && m->rendition_->destroy &&
                          m->rendition_->set_flags && m->rendition_->frame))
     m->rendition_ = nullptr;
-  if (!m->node_) m->rendition_ = nullptr, m->presentation_ = nullptr;
+  if (m->node_rpc_ && !m->node_rpc_->call) m->node_rpc_ = nullptr;
+  if (!m->node_) m->rendition_ = nullptr, m->presentation_ = nullptr, m->node_rpc_ = nullptr;
   return m;
 }
 

@@ -35,6 +35,8 @@ class Medium {
   const asgard_node_v1* node() const { return node_; }
   const asgard_presentation_v1* presentation() const { return presentation_; }
   const asgard_rendition_v1* rendition() const { return rendition_; }
+  // ABI 1.1: requests in the medium's own protocol to a node's slave.
+  const asgard_node_rpc_v1* node_rpc() const { return node_rpc_; }
 
   // Copies the plugin's bytes into a string and frees them.
   std::string Take(asgard_bytes& bytes) const;
@@ -57,6 +59,7 @@ class Medium {
   const asgard_node_v1* node_ = nullptr;
   const asgard_presentation_v1* presentation_ = nullptr;
   const asgard_rendition_v1* rendition_ = nullptr;
+  const asgard_node_rpc_v1* node_rpc_ = nullptr;
 };
 
 class MediumRegistry {

@@ -20,6 +20,7 @@
 #include <cstring>
 #include <memory>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "asgard/medium_abi.h"
@@ -40,6 +41,7 @@ struct asgard_node {
   double timeout = 60.0;
   int memory_mib = asgard::protocol::kDefaultSlaveMemoryMiB;
   std::unique_ptr<SlaveProcess> slave;
+  bool spawned = false;  // a slave process was started (at least once)
   int generation = 0;
   int32_t state = ASGARD_NODE_LOADED;
   std::string message;
@@ -186,13 +188,11 @@ int32_t StatusOf(const CallResult& r, asgard_node* node, asgard_error* error) {
   return ASGARD_ERR_INTERNAL;
 }
 
-// Loads the node's text into its slave.
-int32_t Load(asgard_node* node, asgard_error* error) {
-  const CallResult r = node->slave->Call("load", {{"text", node->text}});
-  if (const int32_t s = StatusOf(r, node, error); s != ASGARD_OK) return s;
-  if (!r.result.value("ok", false)) {
+// The node's state after its slave answered `load` with `result`.
+int32_t Loaded(asgard_node* node, const json& result, asgard_error* error) {
+  if (!result.value("ok", false)) {
     std::string message;
-    for (const auto& d : r.result.value("diagnostics", json::array())) {
+    for (const auto& d : result.value("diagnostics", json::array())) {
       if (!message.empty()) message += "; ";
       message += std::to_string(d.value("line", 0)) + ":" + std::to_string(d.value("column", 0)) +
                  ": " + d.value("message", std::string());
@@ -201,10 +201,30 @@ int32_t Load(asgard_node* node, asgard_error* error) {
     node->message = "scene errors: " + message;
     return SetError(error, ASGARD_ERR_SCENE, node->message);
   }
-  node->bodies = static_cast<int>(r.result.value("bodies", json::array()).size());
+  node->bodies = static_cast<int>(result.value("bodies", json::array()).size());
   node->state = ASGARD_NODE_LOADED;
   node->message = "loaded, not simulated";
   return ASGARD_OK;
+}
+
+// The node's state after its slave answered `simulate` with `result`.
+void Simulated(asgard_node* node, const json& result) {
+  node->t0 = result.value("t0", 0.0);
+  node->t1 = result.value("t1", 0.0);
+  node->frame_rate = result.value("frame_rate", asgard::protocol::kDefaultFrameRate);
+  node->bodies = result.value("bodies", 0);
+  node->state = ASGARD_NODE_SIMULATED;
+  char msg[160];
+  std::snprintf(msg, sizeof msg, "%d %s, t = %g .. %g s", node->bodies,
+                node->bodies == 1 ? "body" : "bodies", node->t0, node->t1);
+  node->message = msg;
+}
+
+// Loads the node's text into its slave.
+int32_t Load(asgard_node* node, asgard_error* error) {
+  const CallResult r = node->slave->Call("load", {{"text", node->text}});
+  if (const int32_t s = StatusOf(r, node, error); s != ASGARD_OK) return s;
+  return Loaded(node, r.result, error);
 }
 
 int32_t Start(asgard_node* node, asgard_error* error) {
@@ -217,6 +237,7 @@ int32_t Start(asgard_node* node, asgard_error* error) {
     node->message = node->slave->error();
     return SetError(error, ASGARD_ERR_SLAVE, node->message);
   }
+  node->spawned = true;
   return Load(node, error);
 }
 
@@ -242,15 +263,7 @@ int32_t RunSimulation(asgard_node* node, const char* method, const json& params,
     node->message = r.message;
   }
   if (const int32_t s = StatusOf(r, node, error); s != ASGARD_OK) return s;
-  node->t0 = r.result.value("t0", 0.0);
-  node->t1 = r.result.value("t1", 0.0);
-  node->frame_rate = r.result.value("frame_rate", asgard::protocol::kDefaultFrameRate);
-  node->bodies = r.result.value("bodies", 0);
-  node->state = ASGARD_NODE_SIMULATED;
-  char msg[160];
-  std::snprintf(msg, sizeof msg, "%d %s, t = %g .. %g s", node->bodies,
-                node->bodies == 1 ? "body" : "bodies", node->t0, node->t1);
-  node->message = msg;
+  Simulated(node, r.result);
   return ASGARD_OK;
 }
 
@@ -273,8 +286,11 @@ int32_t NodeCreate(const char* text, size_t size, const asgard_node_options* opt
         options->slave_memory_mb > 0)
       node->memory_mib = static_cast<int>(std::clamp(options->slave_memory_mb, 16.0, 1e6));
     const int32_t s = Start(node.get(), error);
-    // A node whose text has errors still exists (it can be updated).
-    if (s != ASGARD_OK && s != ASGARD_ERR_SCENE) return s;
+    // A node whose text has errors still exists (it can be updated), and so
+    // does one whose slave started but died or hung loading the text: it is
+    // CRASHED or HUNG like any other, and restart() starts it again.  Only a
+    // slave that could not be started at all leaves no node.
+    if (s != ASGARD_OK && s != ASGARD_ERR_SCENE && !node->spawned) return s;
     *out = node.release();
     return s;
   });
@@ -348,6 +364,57 @@ int32_t NodeRestart(asgard_node* node, asgard_error* error) {
   return Guard(error, [&]() -> int32_t {
     if (!node) return SetError(error, ASGARD_ERR_INVALID, "no node");
     return Start(node, error);
+  });
+}
+
+// ---- the medium's own requests (ABI 1.1): the host's editor on this slave ----
+
+// A request to the node's slave on behalf of the host (its editor server).
+// The node follows what the request did: the text after an edit (so a
+// restart loads the edited scene), loaded or simulated after load and
+// simulate, so renditions draw what the editor shows.
+int32_t NodeCall(asgard_node* node, const char* method, const char* params, size_t params_size,
+                 asgard_bytes* result, asgard_error* error) {
+  return Guard(error, [&]() -> int32_t {
+    if (!node || !method || !result) return SetError(error, ASGARD_ERR_INVALID, "bad arguments");
+    const std::string m = method;
+    for (const char* own : {"shutdown", "open_rendition", "close_rendition", "frame"})
+      if (m == own)
+        return SetError(error, ASGARD_ERR_INVALID,
+                        "'" + m + "' is the node's own request (use the node and rendition calls)");
+    const json p = params && params_size
+                       ? json::parse(std::string_view(params, params_size), nullptr, false)
+                       : json::object();
+    if (p.is_discarded() || !p.is_object())
+      return SetError(error, ASGARD_ERR_INVALID, "the params of '" + m + "' are not a JSON object");
+    if (!node->slave || !node->slave->running())
+      return SetError(error, ASGARD_ERR_SLAVE,
+                      node->message.empty() ? "asgard-core is not running" : node->message);
+    const CallResult r = node->slave->Call(m, p);
+    const bool simulates = m == "simulate" || m == "update";
+    if (simulates && r.status == CallStatus::kRemoteError &&
+        r.remote_code == asgard::protocol::kSceneError) {
+      node->state = ASGARD_NODE_SCENE_ERROR;
+      node->message = r.message;
+    }
+    if (const int32_t s = StatusOf(r, node, error); s != ASGARD_OK) return s;
+    const bool edits = m == "edit" || m == "create" || m == "delete" || m == "undo" || m == "redo";
+    if ((m == "load" || m == "update") && p.contains("text") && p["text"].is_string())
+      node->text = p["text"].get<std::string>();
+    else if (edits && r.result.is_object() && r.result.contains("text") &&
+             r.result["text"].is_string())
+      node->text = r.result["text"].get<std::string>();
+    if (m == "load") {
+      asgard_error ignored{};
+      Loaded(node, r.result, &ignored);  // scene errors are the editor's to show
+    } else if (simulates) {
+      Simulated(node, r.result);
+    } else if (edits) {
+      // The slave dropped its motion with the old text: simulate to draw again.
+      node->state = ASGARD_NODE_LOADED;
+      node->message = "edited, not simulated";
+    }
+    return GiveBytes(r.result.dump(-1, ' ', false, json::error_handler_t::replace), result);
   });
 }
 
@@ -468,6 +535,7 @@ const asgard_node_v1 kNode = {sizeof(asgard_node_v1),
                               NodeGetText,
                               NodeGetStatus,
                               NodeRestart};
+const asgard_node_rpc_v1 kNodeRpc = {sizeof(asgard_node_rpc_v1), NodeCall};
 const asgard_presentation_v1 kPresentation = {sizeof(asgard_presentation_v1), DesiredSize};
 const asgard_rendition_v1 kRendition = {sizeof(asgard_rendition_v1), RenditionCreate,
                                         RenditionDestroy, RenditionSetFlags, RenditionFrame};
@@ -482,6 +550,8 @@ const void* GetInterface(uint32_t id) {
       return &kPresentation;
     case ASGARD_IFACE_RENDITION:
       return &kRendition;
+    case ASGARD_IFACE_NODE_RPC:
+      return &kNodeRpc;
   }
   return nullptr;
 }

@@ -117,34 +117,114 @@ Options MakeOptions(const LaunchOptions& lo) {
   return o;
 }
 
-// The document's animations (<ASGARD> texts) in order, and a page of its
-// text with each animation as a live editor frame.
+// The document's animations (<ASGARD> texts) in order, their places, and
+// a page of its text with each animation as a live rendition with the
+// host's toolbar (or, without a rendition, an editor frame).
 struct Walk {
   std::vector<document::Node*> animations;
+  std::vector<std::vector<size_t>> paths;
+  const std::vector<Animation>* made = nullptr;  // the second walk writes the page
   std::string html;
 };
 
-void Collect(std::vector<document::Node>& nodes, Walk& w) {
-  for (auto& n : nodes) {
+// One animation in the document view: its picture drawn by its slave
+// (GET /frame) and the toolbar of seed 6.2.4 — play, pause, loop, the time
+// slider, recompute, handles, the editor.  The page's WebSocket to the
+// animation is one more view of it: a `scene` event (an edit's new motion,
+// from any editor) redraws the picture, so every rendition stays in step.
+std::string RenditionHtml(size_t i, const Animation& a) {
+  const std::string n = std::to_string(i);
+  return "<figure class=\"rendition\" data-a=\"" + n + "\"><img alt=\"" + HtmlEscape(a.title) +
+         "\" width=\"360\" height=\"240\"><figcaption>"
+         "<button class=\"play\">Play</button> <label><input type=\"checkbox\" class=\"loop\">"
+         "Loop</label> <input type=\"range\" class=\"time\" min=\"0\" max=\"1000\" "
+         "value=\"0\"> <span class=\"t\"></span> <button class=\"recompute\">Recompute</button> "
+         "<label><input type=\"checkbox\" class=\"handles\">Handles</label> <a href=\"/edit?a=" +
+         n + "\" target=\"_blank\">Edit</a> <span class=\"status\"></span></figcaption></figure>\n";
+}
+
+const char* const kDocumentScript = R"(<script>
+for (const f of document.querySelectorAll('figure.rendition')) {
+  const a = f.dataset.a, q = (c) => f.querySelector(c);
+  const img = q('img'), range = q('.time'), status = q('.status'), tl = q('.t');
+  let t0 = 0, t1 = 0, id = 0, timer = null, drawing = null, again = false;
+  const pending = new Map();
+  const time = () => t0 + (t1 - t0) * range.value / 1000;
+  async function draw() {
+    if (drawing) { again = true; return drawing; }
+    drawing = (async () => {
+      const r = await fetch(`/frame?a=${a}&t=${time()}&handles=${q('.handles').checked ? 1 : 0}`);
+      const [s0, s1] = (r.headers.get('X-Asgard-Interval') || '0 0').split(' ').map(Number);
+      if (s1 > s0) [t0, t1] = [s0, s1];
+      status.textContent = (r.headers.get('X-Asgard-Live') === '1' ? '' : '⚠ ') + (r.headers.get('X-Asgard-Status') || '');
+      tl.textContent = `t = ${time().toFixed(2)} s`;
+      if (r.ok) { const old = img.src; img.src = URL.createObjectURL(await r.blob()); if (old) URL.revokeObjectURL(old); }
+      f.dataset.drawn = String(Number(f.dataset.drawn || 0) + 1);
+    })();
+    await drawing; drawing = null;
+    if (again) { again = false; return draw(); }
+  }
+  const ws = new WebSocket(`ws://${location.host}/ws?a=${a}`);
+  const call = (method, params = {}) => new Promise((resolve) => {
+    const n = ++id; pending.set(n, resolve); ws.send(JSON.stringify({ id: n, method, params }));
+  });
+  ws.onmessage = (m) => {
+    const d = JSON.parse(m.data);
+    if (d.id && pending.has(d.id)) { pending.get(d.id)(d); pending.delete(d.id); }
+    else if (d.event === 'scene') draw();
+    else if (d.event === 'error') status.textContent = '⚠ ' + d.message;
+  };
+  range.oninput = draw;
+  q('.handles').onchange = draw;
+  q('.recompute').onclick = async () => {
+    status.textContent = 'recomputing…';
+    const r = await call('simulate');
+    if (r.error || !r.result.ok) status.textContent = '⚠ ' + (r.error ? r.error.message : r.result.error);
+    await draw();
+  };
+  const stop = () => { clearInterval(timer); timer = null; q('.play').textContent = 'Play'; };
+  q('.play').onclick = () => {
+    if (timer) return stop();
+    q('.play').textContent = 'Pause';
+    timer = setInterval(() => {
+      let v = Number(range.value) + 100 / Math.max(t1 - t0, 1e-9);  // 0.1 s a tick
+      if (v > 1000) { if (!q('.loop').checked) { range.value = 1000; draw(); return stop(); } v = 0; }
+      range.value = v; draw();
+    }, 100);
+  };
+  draw();
+}
+</script>
+)";
+
+void Collect(std::vector<document::Node>& nodes, Walk& w, std::vector<size_t>& path) {
+  for (size_t k = 0; k < nodes.size(); ++k) {
+    document::Node& n = nodes[k];
+    path.push_back(k);
     if (n.IsElement("ASGARD")) {
+      const size_t i = w.animations.size();
       w.animations.push_back(&n);
-      w.html +=
-          "<iframe class=\"animation\" src=\"/edit?a=" + std::to_string(w.animations.size() - 1) +
-          "\" style=\"width:100%;height:520px;border:1px solid #999\"></iframe>\n";
-      continue;
+      w.paths.push_back(path);
+      if (w.made && (*w.made)[i].rendition)
+        w.html += RenditionHtml(i, (*w.made)[i]);
+      else if (w.made)
+        w.html += "<iframe class=\"animation\" src=\"/edit?a=" + std::to_string(i) +
+                  "\" style=\"width:100%;height:520px;border:1px solid #999\"></iframe>\n";
+    } else {
+      if (n.kind == document::NodeKind::kText) {
+        const std::string t = n.Text();
+        if (t.find_first_not_of(" \t\r\n") != std::string::npos)
+          w.html += "<p>" + HtmlEscape(t) + "</p>\n";
+      }
+      if (n.kind == document::NodeKind::kElement) Collect(n.children, w, path);
     }
-    if (n.kind == document::NodeKind::kText) {
-      const std::string t = n.Text();
-      if (t.find_first_not_of(" \t\r\n") != std::string::npos)
-        w.html += "<p>" + HtmlEscape(t) + "</p>\n";
-    }
-    if (n.kind == document::NodeKind::kElement) Collect(n.children, w);
+    path.pop_back();
   }
 }
 
 }  // namespace
 
-int ServeDocument(const std::string& path, const LaunchOptions& lo) {
+int ServeDocument(const std::string& path, const LaunchOptions& lo, const AttachHost& attach) {
   auto loaded = document::LoadDocument(path);
   if (!loaded.document) {
     std::cerr << loaded.error << "\n";
@@ -153,7 +233,8 @@ int ServeDocument(const std::string& path, const LaunchOptions& lo) {
   auto doc = std::make_shared<document::Document>(std::move(*loaded.document));
   auto lock = std::make_shared<std::mutex>();  // animations save from their own threads
   Walk w;
-  Collect(doc->nodes, w);
+  std::vector<size_t> at;
+  Collect(doc->nodes, w, at);
   std::vector<Animation> animations;
   for (size_t i = 0; i < w.animations.size(); ++i) {
     document::Node* node = w.animations[i];
@@ -170,11 +251,21 @@ int ServeDocument(const std::string& path, const LaunchOptions& lo) {
       node->children = std::move(children);
       return document::SaveDocument(*doc, path, error);
     };
+    if (attach) attach(w.paths[i], a);
     animations.push_back(std::move(a));
   }
+  Walk page;
+  page.made = &animations;
+  at.clear();
+  Collect(doc->nodes, page, at);
   Options o = MakeOptions(lo);
   o.document_title = fs::path(path).filename().string();
-  o.document_html = "<h1>" + HtmlEscape(o.document_title) + "</h1>\n" + w.html;
+  o.document_html = "<h1>" + HtmlEscape(o.document_title) + "</h1>\n" + page.html;
+  for (const Animation& a : animations)
+    if (a.rendition) {
+      o.document_html += kDocumentScript;
+      break;
+    }
   return Serve(o, std::move(animations));
 }
 

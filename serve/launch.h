@@ -4,8 +4,11 @@
 // Both print the URL on standard output when the server listens.
 #pragma once
 
+#include <functional>
 #include <string>
 #include <vector>
+
+#include "serve/server.h"
 
 namespace asgard::serve {
 
@@ -21,7 +24,15 @@ struct LaunchOptions {
 bool ParseLaunchArgs(const std::vector<std::string>& args, std::string* file, LaunchOptions* o,
                      std::string* error);
 
-int ServeDocument(const std::string& path, const LaunchOptions& o);
+// The host's part of `dochost serve` (host-shim/serve_host.h): given an
+// <ASGARD> element's place in the document (child indices from the
+// document's top nodes), gives its animation the host's slave channel and
+// rendition; an animation left without a channel gets an asgard-core of the
+// server's own.
+using AttachHost =
+    std::function<void(const std::vector<size_t>& element_path, Animation& animation)>;
+
+int ServeDocument(const std::string& path, const LaunchOptions& o, const AttachHost& attach = {});
 int ServeScene(const std::string& path, const LaunchOptions& o);
 
 // The folder of the browser bundle (index.html, editor.js, player.js):

@@ -86,7 +86,7 @@ class Hub {
       : io_(io),
         def_(std::move(a)),
         text_(def_.text),
-        slave_(std::move(core)),
+        slave_(def_.channel ? def_.channel : std::make_shared<SlaveLink>(std::move(core))),
         render_(std::move(render)),
         index_(index) {
     worker_ = std::thread([this] { Work(); });
@@ -110,6 +110,20 @@ class Hub {
   struct Download {
     std::string name, type, bytes;
   };
+  // The rendition at time t for the document view, drawn on the worker
+  // (after this animation's pending requests); `done` runs on the I/O thread.
+  void Render(double t, bool handles, std::function<void(RenditionFrame)> done) {
+    Post([this, t, handles, done = std::move(done)] {
+      RenditionFrame f;
+      try {
+        f = def_.rendition(t, handles);
+      } catch (const std::exception& e) {
+        f.status = e.what();
+      }
+      net::post(io_, [done, f = std::move(f)]() mutable { done(std::move(f)); });
+    });
+  }
+
   std::optional<Download> TakeDownload(long id) {
     std::lock_guard lock(downloads_mu_);
     const auto it = downloads_.find(id);
@@ -154,7 +168,7 @@ class Hub {
   net::io_context& io_;
   Animation def_;
   std::string text_;  // the session's text as last known here (survives a slave crash)
-  SlaveLink slave_;
+  std::shared_ptr<SlaveChannel> slave_;
   bool loaded_ = false;
   json meshes_, poses_;  // the last good scene
   std::string sim_error_;
@@ -271,9 +285,9 @@ void Hub::Broadcast(json event) {
 }
 
 bool Hub::Ensure(std::string* error) {
-  if (slave_.running() && loaded_) return true;
+  if (slave_->running() && loaded_) return true;
   loaded_ = false;
-  const SlaveAnswer a = slave_.Call("load", {{"text", text_}});
+  const SlaveAnswer a = slave_->Call("load", {{"text", text_}});
   if (!a.ok) {
     *error = a.error;
     return false;
@@ -285,7 +299,7 @@ bool Hub::Ensure(std::string* error) {
 json Hub::Call(const std::string& method, const json& params) {
   std::string error;
   if (!Ensure(&error)) throw std::runtime_error(error);
-  const SlaveAnswer a = slave_.Call(method, params);
+  const SlaveAnswer a = slave_->Call(method, params);
   if (a.died) {
     loaded_ = false;
     Broadcast({{"event", "error"}, {"message", a.error}});
@@ -297,7 +311,7 @@ json Hub::Call(const std::string& method, const json& params) {
 json Hub::Resimulate() {
   std::string error;
   if (!Ensure(&error)) throw std::runtime_error(error);
-  const SlaveAnswer sim = slave_.Call("simulate", json::object());
+  const SlaveAnswer sim = slave_->Call("simulate", json::object());
   if (sim.died) loaded_ = false;
   if (!sim.ok) {
     sim_error_ = sim.error;
@@ -481,7 +495,8 @@ class HttpSession : public std::enable_shared_from_this<HttpSession> {
   void Read();
   void OnRequest();
   void Respond(http::status status, const std::string& type, std::string body,
-               const std::string& attachment = "");
+               const std::string& attachment = "",
+               const std::vector<std::pair<std::string, std::string>>& headers = {});
 
   beast::tcp_stream stream_;
   beast::flat_buffer buffer_;
@@ -584,6 +599,20 @@ long AnimationIndex(const std::string& target) {
   }
 }
 
+// The value of `key` in the target's query ("" when absent).
+std::string QueryValue(const std::string& target, const std::string& key) {
+  const size_t q = target.find('?');
+  if (q == std::string::npos) return "";
+  size_t at = q + 1;
+  while (at < target.size()) {
+    const size_t amp = std::min(target.find('&', at), target.size());
+    const std::string pair = target.substr(at, amp - at);
+    if (pair.compare(0, key.size() + 1, key + "=") == 0) return pair.substr(key.size() + 1);
+    at = amp + 1;
+  }
+  return "";
+}
+
 void HttpSession::OnRequest() {
   auto req = parser_->release();
   const std::string target(req.target());
@@ -629,6 +658,31 @@ void HttpSession::OnRequest() {
     if (!d) return Respond(http::status::not_found, "text/plain", "no such download\n");
     return Respond(http::status::ok, d->type, d->bytes, d->name);
   }
+  if (path == "/frame") {
+    const long i = AnimationIndex(target);
+    Hub* hub = i < 0 ? nullptr : server_.hub(static_cast<size_t>(i));
+    if (!hub || !hub->def().rendition)
+      return Respond(http::status::not_found, "text/plain", "no rendition of that animation\n");
+    const std::string t = QueryValue(target, "t");
+    char* end = nullptr;
+    const double time = std::strtod(t.c_str(), &end);
+    if (t.empty() || *end != '\0' || !std::isfinite(time))
+      return Respond(http::status::bad_request, "text/plain", "frame: t must be a number\n");
+    hub->Render(time, QueryValue(target, "handles") == "1",
+                [self = shared_from_this()](RenditionFrame f) {
+                  char interval[64];
+                  std::snprintf(interval, sizeof interval, "%.17g %.17g", f.t0, f.t1);
+                  const std::vector<std::pair<std::string, std::string>> headers = {
+                      {"X-Asgard-Status", f.status},
+                      {"X-Asgard-Interval", interval},
+                      {"X-Asgard-Live", f.live ? "1" : "0"}};
+                  if (f.png.empty())
+                    return self->Respond(http::status::service_unavailable, "text/plain",
+                                         "no picture: " + f.status + "\n", "", headers);
+                  self->Respond(http::status::ok, "image/png", std::move(f.png), "", headers);
+                });
+    return;
+  }
   if (path == "/edit" || (path == "/" && o.document_html.empty())) {
     const long i = AnimationIndex(target);
     if (i < 0 || !server_.hub(static_cast<size_t>(i)))
@@ -651,8 +705,15 @@ void HttpSession::OnRequest() {
 }
 
 void HttpSession::Respond(http::status status, const std::string& type, std::string body,
-                          const std::string& attachment) {
+                          const std::string& attachment,
+                          const std::vector<std::pair<std::string, std::string>>& headers) {
   auto res = std::make_shared<http::response<http::string_body>>(status, 11);
+  for (const auto& [name, value] : headers) {
+    std::string v = value;  // one line: a slave's message may hold anything
+    for (char& c : v)
+      if (static_cast<unsigned char>(c) < 0x20 || c == 0x7f) c = ' ';
+    res->set(name, v);
+  }
   if (!attachment.empty())
     res->set(http::field::content_disposition, "attachment; filename=\"" + attachment + "\"");
   res->set(http::field::server, "asgard");

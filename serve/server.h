@@ -5,6 +5,8 @@
 //                          /edit?a=N    bare scene), the editor of animation N
 //                          /editor.js   the bundle built from web/
 //                          /download?a=N&id=K  an export the server made (a movie)
+//                          /frame?a=N&t=T[&handles=1]  a rendition's picture (PNG), drawn
+//                                       by the animation's slave (dochost serve)
 //   browser ══WebSocket══▶ /ws?a=N     JSON {id, method, params} → {id, result | error};
 //                                       events {event: text | scene | state | error}
 //                                       go to every view of animation N
@@ -19,16 +21,36 @@
 #pragma once
 
 #include <functional>
+#include <memory>
 #include <string>
 #include <vector>
 
+#include "serve/slave_link.h"
+
 namespace asgard::serve {
+
+// A rendition's picture for the document view: PNG bytes, the status line
+// for its caption, the simulated interval, and whether the picture is live
+// (false: the last frame or the poster, the status says why).
+struct RenditionFrame {
+  std::string png;
+  std::string status;
+  double t0 = 0, t1 = 0;
+  bool live = false;
+};
 
 struct Animation {
   std::string title;
   std::string text;  // the scene text when the server starts
   // Saves `text` as this animation's scene (atomically); false with `error`.
   std::function<bool(const std::string& text, std::string* error)> save;
+  // The slave the editor talks to; null: the server starts an asgard-core
+  // of its own.  Called only from the animation's worker thread.
+  std::shared_ptr<SlaveChannel> channel;
+  // The animation's rendition at time t (with position handles when asked),
+  // drawn by the same slave as `channel`'s, on the same worker thread; null
+  // when the animation has none (then GET /frame is 404).
+  std::function<RenditionFrame(double t, bool handles)> rendition;
 };
 
 struct Options {

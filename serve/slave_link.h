@@ -9,6 +9,7 @@
 
 #include <nlohmann/json.hpp>
 #include <string>
+#include <utility>
 
 namespace asgard::serve {
 
@@ -19,17 +20,30 @@ struct SlaveAnswer {
   std::string error;      // otherwise
 };
 
-class SlaveLink {
+// Where an animation's editor requests go: an asgard-core of the server's
+// own (SlaveLink), or the slave of the host's medium node that also draws
+// the animation's renditions (dochost serve, host-shim/serve_host.h).  Called
+// from the animation's worker thread only.
+class SlaveChannel {
+ public:
+  virtual ~SlaveChannel() = default;
+  // A slave runs and holds the text last loaded through this channel.
+  virtual bool running() const = 0;
+  // One request; a slave that is not running is started first.
+  virtual SlaveAnswer Call(const std::string& method, const nlohmann::json& params) = 0;
+};
+
+class SlaveLink : public SlaveChannel {
  public:
   explicit SlaveLink(std::string program) : program_(std::move(program)) {}
-  ~SlaveLink();
+  ~SlaveLink() override;
   SlaveLink(const SlaveLink&) = delete;
   SlaveLink& operator=(const SlaveLink&) = delete;
 
-  bool running() const { return pid_ > 0; }
+  bool running() const override { return pid_ > 0; }
   // Starts the slave when none runs; false (with error()) when it cannot.
   bool Start();
-  SlaveAnswer Call(const std::string& method, const nlohmann::json& params);
+  SlaveAnswer Call(const std::string& method, const nlohmann::json& params) override;
   void Stop();
   const std::string& error() const { return error_; }
 

@@ -7,6 +7,7 @@
 #include <stdlib.h>
 
 #include <chrono>
+#include <cmath>
 #include <cstring>
 #include <nlohmann/json.hpp>
 #include <random>
@@ -53,6 +54,7 @@ TEST(Plugins, TheAsgardMediumLoadsWithAllInterfaces) {
   EXPECT_NE(m.node(), nullptr);
   EXPECT_NE(m.presentation(), nullptr);
   EXPECT_NE(m.rendition(), nullptr);
+  EXPECT_NE(m.node_rpc(), nullptr);  // ABI 1.1
 }
 
 TEST(Plugins, AnotherMajorVersionIsRefusedWithAClearMessage) {
@@ -91,6 +93,11 @@ TEST(Plugins, APluginReturningErrorsDoesNotStopTheHost) {
   EXPECT_FALSE(doc.SetText(ok, "new"));
   EXPECT_NE(ok.message.find("cannot encode"), std::string::npos);
   EXPECT_TRUE(doc.Frame(ok, ASGARD_DEVICE_PAGE, 10, 10, 0, 0).empty());
+  // An ABI 1.0 medium takes no requests of its own: said, not a crash.
+  std::string result;
+  EXPECT_EQ(doc.Call(ok, "scene_state", "{}", &result), ASGARD_ERR_UNSUPPORTED);
+  EXPECT_NE(ok.message.find("takes no requests of its own (medium ABI 1.1)"), std::string::npos)
+      << ok.message;
   EXPECT_EQ(document::Write(doc.document()), bytes);
 }
 
@@ -375,6 +382,26 @@ TEST(Slave, AMissingSlaveProgramIsAStatusNotACrash) {
   asgard_error e{};
   EXPECT_EQ(Asgard().node()->create("x", 1, &o, &n.node, &e), ASGARD_ERR_SLAVE);
   EXPECT_NE(std::string(e.message).find("cannot start"), std::string::npos) << e.message;
+  EXPECT_EQ(n.node, nullptr) << "nothing started, nothing to restart";
+}
+
+// A slave that dies loading the text leaves a CRASHED node (before, no
+// node: nothing the host could restart), and restart() brings it back.
+TEST(Slave, ASlaveThatDiesLoadingLeavesACrashedNodeThatRestarts) {
+  Node n;
+  ASSERT_EQ(setenv("ASGARD_CORE_FAULT", "exit-on-load", 1), 0);
+  const int32_t s = Create(Scene(), n);
+  unsetenv("ASGARD_CORE_FAULT");
+  EXPECT_EQ(s, ASGARD_ERR_SLAVE);
+  ASSERT_NE(n.node, nullptr);
+  EXPECT_EQ(Status(n.node).state, ASGARD_NODE_CRASHED);
+  EXPECT_NE(std::string(Status(n.node).message).find("exited with status 3 while answering 'load'"),
+            std::string::npos)
+      << Status(n.node).message;
+  asgard_error e{};
+  ASSERT_EQ(Asgard().node()->restart(n.node, &e), ASGARD_OK) << e.message;
+  ASSERT_EQ(Asgard().node()->simulate(n.node, nullptr, nullptr, &e), ASGARD_OK) << e.message;
+  EXPECT_EQ(Status(n.node).state, ASGARD_NODE_SIMULATED);
 }
 
 // ---- the host document ----
@@ -483,6 +510,87 @@ TEST(HostDocument, ThePlayerDataIsTheSlavesMotionPacked) {
   EXPECT_TRUE(data["camera"].contains("eye") && data["camera"].contains("tan_half_fov"));
   // The rate must be a number in (0, 1000].
   EXPECT_FALSE(doc.Command(item, "player fast", &reply));
+}
+
+// b3's y in the slave's motion at t (memo: it starts at init_pos and moves
+// at (0 1 0) with no force), read through the player data of `item`'s node.
+double B3YAt(HostDocument& doc, Embedded& item, int frame) {
+  std::string reply, error;
+  EXPECT_TRUE(doc.Command(item, "player 30", &reply)) << reply;
+  const std::string packed = PlayerJson(reply, &error);
+  EXPECT_FALSE(packed.empty()) << error;
+  if (packed.empty()) return NAN;
+  const std::vector<float> poses = Floats(nlohmann::json::parse(packed)["poses"]);
+  return poses.at(static_cast<size_t>((frame * 2 + 1) * 7 + 1));
+}
+
+// Issue 13: the editor's requests (ABI 1.1 node_rpc) go to the slave that
+// draws the renditions: an edit and a simulate through it change what the
+// renditions draw and the node's motion exactly, in the same process, and
+// a restart after the slave dies loads the edited text.
+TEST(HostDocument, TheEditorsRequestsGoToTheSlaveThatDrawsTheRenditions) {
+  auto parsed = document::Parse(ReadSample("memo.ens"));
+  ASSERT_TRUE(parsed.ok());
+  HostDocument doc(*parsed.document, Registry(), Opts("memo.ens", kCore));
+  Embedded& item = doc.items()[0];
+  ASSERT_NE(item.medium->node_rpc(), nullptr);
+  ASSERT_TRUE(doc.Simulate(item)) << item.message;
+  bool live = false;
+  const Picture before = doc.Frame(item, ASGARD_DEVICE_PAGE, 90, 60, 1.0, 0, &live);
+  ASSERT_TRUE(live) << item.message;
+  const int pid = item.status.pid;
+  EXPECT_NEAR(B3YAt(doc, item, 30), 1.0, 1e-5);  // y = 0 + 1 · t at t = 1
+
+  std::string r;
+  ASSERT_EQ(
+      doc.Call(item, "edit", R"({"element": "b3", "param": "init_pos", "values": [1, -1, 0]})", &r),
+      ASGARD_OK)
+      << item.message;
+  const std::string edited = nlohmann::json::parse(r)["text"];
+  EXPECT_NE(edited.find("-init_pos {1 -1 0}"), std::string::npos) << edited;
+  asgard_bytes text{};
+  asgard_error e{};
+  ASSERT_EQ(Asgard().node()->get_text(item.node, &text, &e), ASGARD_OK);
+  EXPECT_EQ(Asgard().Take(text), edited) << "the node follows the editor's text";
+  EXPECT_EQ(item.status.state, ASGARD_NODE_LOADED) << "edited, not yet simulated";
+  // Until the next simulate the renditions keep their last picture.
+  const Picture waiting = doc.Frame(item, ASGARD_DEVICE_PAGE, 90, 60, 1.0, 0, &live);
+  EXPECT_FALSE(live);
+  EXPECT_EQ(waiting.rgba, before.rgba);
+
+  ASSERT_EQ(doc.Call(item, "simulate", "{}", &r), ASGARD_OK) << item.message;
+  EXPECT_TRUE(item.simulated);
+  EXPECT_DOUBLE_EQ(item.t1, 3.0);
+  const Picture after = doc.Frame(item, ASGARD_DEVICE_PAGE, 90, 60, 1.0, 0, &live);
+  ASSERT_TRUE(live) << item.message;
+  EXPECT_NE(after.rgba, before.rgba) << "b3 is drawn where the edit put it";
+  EXPECT_NEAR(B3YAt(doc, item, 30), 0.0, 1e-5);  // y = -1 + 1 · t at t = 1
+  EXPECT_EQ(item.status.pid, pid) << "one slave for the editor and the renditions";
+
+  // The same picture as a host that was given the edited text.
+  HostDocument fresh(*parsed.document, Registry(), Opts("memo.ens", kCore));
+  ASSERT_TRUE(fresh.SetText(fresh.items()[0], edited)) << fresh.items()[0].message;
+  EXPECT_EQ(fresh.Frame(fresh.items()[0], ASGARD_DEVICE_PAGE, 90, 60, 1.0, 0).rgba, after.rgba);
+
+  // Bad requests are refused without harm; the node's own are not for this.
+  EXPECT_EQ(doc.Call(item, "frame", "{}", &r), ASGARD_ERR_INVALID);
+  EXPECT_EQ(doc.Call(item, "edit", "[1, 2]", &r), ASGARD_ERR_INVALID);
+  EXPECT_NE(item.message.find("not a JSON object"), std::string::npos) << item.message;
+  EXPECT_EQ(
+      doc.Call(item, "edit", R"({"element": "nope", "param": "init_pos", "values": [0]})", &r),
+      ASGARD_ERR_SCENE);
+  EXPECT_EQ(item.status.pid, pid);
+
+  // The slave dies: the next request starts a new one with the edited text.
+  kill(pid, SIGKILL);
+  EXPECT_EQ(doc.Call(item, "scene_state", "{}", &r), ASGARD_ERR_SLAVE);
+  EXPECT_NE(item.message.find("killed by signal 9"), std::string::npos) << item.message;
+  ASSERT_EQ(doc.Call(item, "scene_state", "{}", &r), ASGARD_OK) << item.message;
+  EXPECT_NE(item.status.pid, pid);
+  EXPECT_EQ(nlohmann::json::parse(r)["text"], edited);
+  ASSERT_EQ(doc.Call(item, "simulate", "{}", &r), ASGARD_OK) << item.message;
+  EXPECT_EQ(doc.Frame(item, ASGARD_DEVICE_PAGE, 90, 60, 1.0, 0, &live).rgba, after.rgba);
+  EXPECT_TRUE(live);
 }
 
 TEST(Html, PlayerJsonPacksHullsKeepsStillBodiesToOnePoseAndRefusesBadData) {

@@ -146,6 +146,22 @@ Watched RunDochost(const std::vector<std::string>& args, const fs::path& log, in
   return w;
 }
 
+// A slave program for --core that counts its starts (one line each in
+// dir/starts) and makes the first `failing` of them exit while loading their
+// text (asgard-core's exit-on-load test hook), then runs asgard-core.  Each
+// start loads and simulates once, so the count is the simulations.
+fs::path CountingCore(const fs::path& dir, int failing) {
+  const fs::path script = dir / "core.sh", starts = dir / "starts";
+  fs::remove(starts);
+  std::ofstream(script) << "#!/bin/sh\necho start >> '" << starts.string() << "'\n"
+                        << "if [ \"$(wc -l < '" << starts.string() << "')\" -le " << failing
+                        << " ]; then ASGARD_CORE_FAULT=exit-on-load; export ASGARD_CORE_FAULT; fi\n"
+                        << "exec '" << ASGARD_BINARY_DIR << "/core/app/asgard-core' \"$@\"\n";
+  fs::permissions(script, fs::perms::owner_all);
+  return script;
+}
+size_t Starts(const fs::path& dir) { return Count(FileText(dir / "starts"), "start"); }
+
 std::string PdfText(const fs::path& pdf) {
   return asgard::testing::Exec("pdftotext " + pdf.string() + " -").out;
 }
@@ -190,6 +206,53 @@ TEST(Slaves, ASlaveKilledTwiceFallsBackAndTheExitStatusSaysSo) {
   EXPECT_NE(text.find("The text after the animations."), std::string::npos) << text;
 }
 
+// A slave that dies while loading its text is started again once (before,
+// the node was never made, so nothing was restarted and the animation fell
+// back at once) and the page gets its live frame.
+TEST(Slaves, ASlaveThatDiesLoadingItsTextIsRestartedOnce) {
+  const fs::path dir = Scratch("die_loading");
+  std::ofstream(dir / "ball.ens") << Document({kBall});
+  const fs::path pdf = dir / "ball.pdf";
+  const Watched w = RunDochost({"convert", (dir / "ball.ens").string(), "-o", pdf.string(),
+                                "--core", CountingCore(dir, 1).string()},
+                               dir / "log");
+  EXPECT_EQ(w.status, 0) << w.out;
+  EXPECT_EQ(Starts(dir), 2u) << w.out;
+  EXPECT_NE(w.out.find("animation 1: asgard-core exited with status 3 while answering 'load'; it "
+                       "was restarted once"),
+            std::string::npos)
+      << w.out;
+  EXPECT_EQ(Count(PdfText(pdf), "frame at t = 0.00 s"), 1u) << PdfText(pdf);
+}
+
+// Every slave dies loading: one restart, no more, then the poster the
+// document keeps, the reason on stderr and exit status 3.
+TEST(Slaves, ASlaveThatAlwaysDiesLoadingFallsBackToThePosterAfterOneRestart) {
+  const fs::path dir = Scratch("die_loading_always");
+  std::ofstream(dir / "ball.ens") << Document({kBall});
+  // A poster in the document first (recompute stores one).
+  const fs::path with_poster = dir / "poster.ens";
+  const Watched r = RunDochost(
+      {"verb", (dir / "ball.ens").string(), "recompute", "-o", with_poster.string(), "--quiet"},
+      dir / "log");
+  ASSERT_EQ(r.status, 0) << r.out;
+  ASSERT_NE(FileText(with_poster).find("<POSTER>"), std::string::npos);
+  const fs::path pdf = dir / "ball.pdf";
+  const Watched w = RunDochost({"convert", with_poster.string(), "-o", pdf.string(), "--core",
+                                CountingCore(dir, 1000).string()},
+                               dir / "log");
+  EXPECT_EQ(w.status, 3) << w.out;
+  EXPECT_EQ(Starts(dir), 2u) << "started once and restarted once: " << w.out;
+  EXPECT_NE(w.out.find("it was restarted once"), std::string::npos) << w.out;
+  EXPECT_NE(w.out.find("dochost: " + with_poster.string() +
+                       ": animation 1: asgard-core exited with status 3 while answering 'load'"),
+            std::string::npos)
+      << w.out;
+  const std::string text = PdfText(pdf);
+  EXPECT_EQ(Count(text, "frame at t ="), 0u) << text;
+  EXPECT_NE(text.find("showing the last poster"), std::string::npos) << text;  // a line ends there
+}
+
 // Eight animations with --slaves 2: never more than two slaves at once
 // (before, one per animation stayed up to the end), and every animation is
 // drawn live, on the pages and in the HTML page.
@@ -200,18 +263,25 @@ TEST(Slaves, ManyAnimationsRunAtMostTheAllowedSlavesAtOnce) {
     scenes.push_back(kBall + "# animation " + std::to_string(k + 1) + "\n");
   std::ofstream(dir / "many.ens") << Document(scenes);
   const fs::path pdf = dir / "many.pdf";
+  const std::string core = CountingCore(dir, 0).string();
   const Watched p = RunDochost(
-      {"convert", (dir / "many.ens").string(), "-o", pdf.string(), "--slaves", "2"}, dir / "log");
+      {"convert", (dir / "many.ens").string(), "-o", pdf.string(), "--slaves", "2", "--core", core},
+      dir / "log");
   EXPECT_EQ(p.status, 0) << p.out;
   EXPECT_GE(p.most_running, 1);
   EXPECT_LE(p.most_running, 2) << p.out;
   EXPECT_EQ(Count(PdfText(pdf), "frame at t = 0.00 s"), 8u) << PdfText(pdf);
+  // Each animation simulated once (before, the six stopped to make room were
+  // simulated again to be drawn: 14).
+  EXPECT_EQ(Starts(dir), 8u) << p.out;
 
   const fs::path html = dir / "many.html";
-  const Watched h = RunDochost(
-      {"convert", (dir / "many.ens").string(), "-o", html.string(), "--slaves", "2"}, dir / "log");
+  const Watched h = RunDochost({"convert", (dir / "many.ens").string(), "-o", html.string(),
+                                "--slaves", "2", "--core", CountingCore(dir, 0).string()},
+                               dir / "log");
   EXPECT_EQ(h.status, 0) << h.out;
   EXPECT_LE(h.most_running, 2) << h.out;
+  EXPECT_EQ(Starts(dir), 8u) << h.out;
   const std::string page = FileText(html);
   // Each animation's frames (0, 1/4 and 1/2 s) are in the page.
   EXPECT_EQ(Count(page, "data:image/png;base64,"), 8u * 3) << h.out;

@@ -13,10 +13,11 @@ export function checker() {
   return { check, failures };
 }
 
-// Starts the server on a free port; resolves {url, port, proc}.
-export function startStudio(asgard, scene) {
+// Starts the server on a free port; resolves {url, port, proc}.  `command`
+// is asgard's `studio` (a scene) or dochost's `serve` (a document).
+export function startStudio(asgard, scene, command = 'studio') {
   return new Promise((resolve, reject) => {
-    const proc = spawn(asgard, ['studio', scene, '--port', '0'], { stdio: ['ignore', 'pipe', 'pipe'] });
+    const proc = spawn(asgard, [command, scene, '--port', '0'], { stdio: ['ignore', 'pipe', 'pipe'] });
     let out = '';
     const timer = setTimeout(() => reject(new Error(`no URL from asgard studio: ${out}`)), 20000);
     proc.stdout.on('data', (d) => {

@@ -9,7 +9,11 @@ HERE=$(cd "$(dirname "$0")" && pwd)
 if ! command -v node >/dev/null 2>&1; then
   echo "SKIP: node is not installed"; exit 77
 fi
-if [ "$WHICH" != server ]; then
+# server and docserve need node alone (docserve its WebSocket: Node 20's
+# --experimental-websocket).
+FLAGS=
+if [ "$WHICH" = docserve ]; then FLAGS=--experimental-websocket; fi
+if [ "$WHICH" != server ] && [ "$WHICH" != docserve ]; then
   if [ ! -x /usr/bin/chromium ]; then echo "SKIP: /usr/bin/chromium is not installed"; exit 77; fi
   if [ ! -f "$SOURCE/web/node_modules/playwright-core/package.json" ]; then
     echo "SKIP: playwright-core is not installed in web/node_modules (the build runs npm ci)"; exit 77
@@ -22,4 +26,4 @@ NAME=$(basename "$SCENE")
 cp "$SCENE" "$OUT/$NAME"
 export ASGARD_WEB_ROOT="$WEB"
 export ASGARD_WEB_MODULES="$SOURCE/web/node_modules"
-exec node "$HERE/${WHICH}_test.mjs" "$ASGARD" "$OUT/$NAME" "$OUT"
+exec node $FLAGS "$HERE/${WHICH}_test.mjs" "$ASGARD" "$OUT/$NAME" "$OUT"

@@ -66,6 +66,11 @@ await browserTest(asgard, scene, 'trajectory', async ({ check, url, context }) =
   let during = null;
   await dragHandle(page, 'path.points#2', 0, -80, {
     during: async () => {
+      // The picture follows the pointer at once; the text one round trip
+      // later (one edit in flight at a time).  Compare them once the last
+      // step's edit is in, not at whatever instant this runs: on a slow or
+      // busy machine the text may still be a step behind.
+      await page.evaluate(() => window.asgard.graphical.flushDrag());
       during = {
         label: await page.evaluate(() => document.getElementById('label').textContent),
         knots: knotsOf(await text(page)),

@@ -9,7 +9,10 @@
  *      ├── ASGARD_IFACE_STORAGE       element body ⇄ medium text
  *      ├── ASGARD_IFACE_NODE          one node per subdocument (may run a slave process)
  *      ├── ASGARD_IFACE_PRESENTATION  the size the subdocument wants on the page
- *      └── ASGARD_IFACE_RENDITION     one per (view, output device): RGBA frames
+ *      ├── ASGARD_IFACE_RENDITION     one per (view, output device): RGBA frames
+ *      └── ASGARD_IFACE_NODE_RPC      (1.1) the medium's own requests to a node's
+ *                                     slave: a host's editor and its renditions
+ *                                     share one slave and one state
  *
  * Rules: only C types cross; nothing throws across; every call that can fail
  * returns an asgard_status and fills an asgard_error (code + message).
@@ -33,7 +36,7 @@ extern "C" {
 #endif
 
 #define ASGARD_MEDIUM_ABI_MAJOR 1
-#define ASGARD_MEDIUM_ABI_MINOR 0
+#define ASGARD_MEDIUM_ABI_MINOR 1
 /* The one exported symbol: const asgard_medium_entry* asgard_medium_get_entry(void); */
 #define ASGARD_MEDIUM_ENTRY_SYMBOL "asgard_medium_get_entry"
 
@@ -63,7 +66,8 @@ enum {
   ASGARD_IFACE_STORAGE = 1,
   ASGARD_IFACE_NODE = 2,
   ASGARD_IFACE_PRESENTATION = 3,
-  ASGARD_IFACE_RENDITION = 4
+  ASGARD_IFACE_RENDITION = 4,
+  ASGARD_IFACE_NODE_RPC = 5 /* ABI 1.1 */
 };
 
 typedef struct asgard_medium_entry {
@@ -124,7 +128,10 @@ typedef struct asgard_node_status {
 
 typedef struct asgard_node_v1 {
   uint32_t struct_size;
-  /* Starts the node (and its slave) with the medium text. */
+  /* Starts the node (and its slave) with the medium text.  On
+   * ASGARD_ERR_SCENE, and when the slave started but died or hung loading
+   * the text (state CRASHED or HUNG; restart to continue), *node is set
+   * though the status is not ASGARD_OK; the host destroys it as any other. */
   int32_t (*create)(const char* text, size_t size, const asgard_node_options* options,
                     asgard_node** node, asgard_error* error);
   /* Also destroys the node's renditions. */
@@ -175,6 +182,26 @@ typedef struct asgard_rendition_v1 {
   int32_t (*frame)(asgard_rendition* rendition, double time, asgard_frame* frame,
                    asgard_error* error);
 } asgard_rendition_v1;
+
+/* Added in ABI 1.1: a request in the medium's own protocol to a node's slave
+ * (for the ASGARD medium: the editor's edit, create, delete, undo, redo,
+ * scene_state, meshes, poses, load, simulate — asgard-core's JSON-RPC), so
+ * that an editor the host serves and the node's renditions are one state: an
+ * edit made here is what the renditions draw after the next simulate, and a
+ * restart loads the edited text.  `params` is the text of a JSON object
+ * (NULL or empty: {}).  On ASGARD_OK *result holds the answer's JSON text.
+ * An error the slave answers is ASGARD_ERR_SCENE (scene or solver) or
+ * ASGARD_ERR_INVALID with its message, and the slave goes on; a slave that
+ * died, hung or broke the framing is ASGARD_ERR_SLAVE, _TIMEOUT or
+ * _PROTOCOL and the node is CRASHED or HUNG (restart to continue).  Requests
+ * that change the text change the node's text (get_text); `simulate` sets
+ * its state and interval; the node's own requests (frames, renditions,
+ * shutdown) are refused with ASGARD_ERR_INVALID. */
+typedef struct asgard_node_rpc_v1 {
+  uint32_t struct_size;
+  int32_t (*call)(asgard_node* node, const char* method, const char* params, size_t params_size,
+                  asgard_bytes* result, asgard_error* error);
+} asgard_node_rpc_v1;
 
 #ifdef __cplusplus
 }
