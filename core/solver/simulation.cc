@@ -64,7 +64,18 @@ std::vector<std::vector<int>> ReadsOf(const physics::EquationSystem& sys) {
 Simulation::Simulation(const physics::EquationSystem& system, SolverOptions options)
     : sys_(system), options_(options) {
   reads_ = ReadsOf(sys_);
-  partition_ = PartitionEquations(reads_, !options_.partition, options_.fuse_chains);
+  // Per-body fusion: a body whose variables a trajectory prescribes stays
+  // apart (a prescribed row puts its whole component on the implicit path).
+  std::vector<int> body_of;
+  if (options_.fuse_chains && options_.fuse_bodies) {
+    body_of.assign(sys_.variables.size(), -1);
+    std::vector<char> prescribed(sys_.bodies.size(), 0);
+    for (const auto& v : sys_.variables)
+      if (v.body >= 0 && !v.overrides.empty()) prescribed[v.body] = 1;
+    for (size_t i = 0; i < sys_.variables.size(); ++i)
+      if (const int b = sys_.variables[i].body; b >= 0 && !prescribed[b]) body_of[i] = b;
+  }
+  partition_ = PartitionEquations(reads_, !options_.partition, options_.fuse_chains, body_of);
   values_.assign(sys_.variables.size(), 0.0);
   externs_ = sys_.externs();
   const double span = sys_.t1 - sys_.t0;

@@ -1,7 +1,7 @@
 // Tarjan partitioning on hand-made reference graphs.
-#include <gtest/gtest.h>
-
 #include "core/solver/partition.h"
+
+#include <gtest/gtest.h>
 
 namespace asgard::solver {
 namespace {
