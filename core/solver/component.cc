@@ -108,13 +108,15 @@ static Plan PlanStep(double t, double h, double bp, double t1) {
 }
 
 struct Component::Mode {
-  std::vector<char> prescribed;       // per local variable
-  expr::Tape f_tape;                  // n outputs: ẋ (ODE rows) or g (prescribed rows)
+  std::vector<char> prescribed;  // per local variable
+  // n outputs: ẋ (ODE rows) or g (prescribed rows); evaluated on the value
+  // array offset by its shift (TapeCache: shared with identical components).
+  TapeCache::Shared f_tape;
   std::vector<expr::NodeId> outputs;  // per row: ẋ's or g's expression
   // Built on first use (PrepareJacobian): everything below but `out` of f.
   expr::Tape fj_tape;           // the same followed by the Jacobian entries
   std::vector<int> jrow, jcol;  // local (row, col) of each Jacobian entry
-  expr::Tape gdot_tape;         // ∂g/∂t for prescribed rows whose g depends on t only
+  TapeCache::Shared gdot_tape;  // ∂g/∂t for prescribed rows whose g depends on t only
   std::vector<int> gdot_rows;
   std::vector<int> mrow, mcol;  // matrix pattern: n diagonal entries, then jrow/jcol
   std::vector<double> jvals, mvals, out;
@@ -305,11 +307,9 @@ std::unique_ptr<Component::Mode> Component::BuildMode(const std::string& key, do
     }
   }
   m->outputs = outputs;
-  m->autonomous =
-      points_autonomous_ && std::none_of(outputs.begin(), outputs.end(),
-                                         [&](expr::NodeId e) { return pool.DependsOnTime(e); });
-  m->f_tape = expr::Tape::Compile(pool, outputs);
-  m->gdot_tape = expr::Tape::Compile(pool, gdots);
+  m->f_tape = sim_.tapes().Get(pool, outputs);
+  m->autonomous = points_autonomous_ && !m->f_tape.reads_time;
+  m->gdot_tape = sim_.tapes().Get(pool, gdots);
   m->any_prescribed =
       std::any_of(m->prescribed.begin(), m->prescribed.end(), [](char p) { return p != 0; });
   if (m->autonomous && !m->any_prescribed && !joints_ && inputs_.empty())
@@ -419,7 +419,7 @@ void Component::EvalF(const Mode& m, double t, const double* y, double* out, Sid
   if (landing) te = std::nextafter(t, -std::numeric_limits<double>::infinity());
   if (side == Side::kRight) te = std::nextafter(t, std::numeric_limits<double>::infinity());
   const expr::ExternFn& ext = sim_.externs();
-  m.f_tape.Evaluate(te, sim_.values(), out, &ext);
+  m.f_tape.tape->Evaluate(te, sim_.values() + m.f_tape.shift, out, &ext);
   if (joints_) joints_->Apply(te, sim_.values(), out, m.prescribed.data(), &ext);
   ++counters_.rhs_evaluations;
 }
@@ -615,7 +615,7 @@ void Component::Rates(const Mode& m, double t, const double* y, const double* fy
   double* g = gdot_.data();
   double te = side == Side::kRight ? std::nextafter(t, std::numeric_limits<double>::infinity()) : t;
   const expr::ExternFn& ext = sim_.externs();
-  m.gdot_tape.Evaluate(te, sim_.values(), g, &ext);
+  m.gdot_tape.tape->Evaluate(te, sim_.values() + m.gdot_tape.shift, g, &ext);
   for (size_t i = 0; i < m.gdot_rows.size(); ++i) rate[m.gdot_rows[i]] = g[i];
 }
 
@@ -787,39 +787,38 @@ double Component::RestSpan(const Mode& m, double h, const std::vector<int>* rows
   const double* f = wave_.f(k);
   const SolverOptions& o = sim_.options();
   // The rows tested: `rows`, else every row a constant does not prescribe.
-  std::vector<char>& tested = rest_rows_;
-  tested.assign(n, rows ? 0 : 1);
-  if (rows)
-    for (int j : *rows) tested[j] = 1;
-  for (size_t j = 0; j < n; ++j)
-    if (m.prescribed[j]) tested[j] = 0;
+  if (rows) {
+    rest_rows_.assign(n, 0);
+    for (int j : *rows) rest_rows_[j] = 1;
+  }
+  auto tested = [&](size_t j) { return !m.prescribed[j] && (!rows || rest_rows_[j]); };
   // Rows no joint force acts on first: a moving body fails here, before the
   // free rates are evaluated (this runs at every step of such a component).
   const double t = wave_.time(k);
   auto weighted = [&](size_t j) { return std::abs(f[j]) / (o.atol + o.rtol * std::abs(x[j])); };
   double fn = 0.0;
   for (size_t j = 0; j < n; ++j)
-    if (tested[j] && !(joints_ && joint_rows_[j])) fn = std::max(fn, weighted(j));
+    if (tested(j) && !(joints_ && joint_rows_[j])) fn = std::max(fn, weighted(j));
   if (fn > 0.0 && !(kRestFraction / fn >= kRestMinGain * h)) return 0.0;
   // A rate within rounding of the free rate that the joint forces balanced
   // (gravity against the joint holding a pendulum) counts as zero.
   if (joints_) {
     Load(t, x, Side::kRight);
-    m.f_tape.Evaluate(std::nextafter(t, std::numeric_limits<double>::infinity()), sim_.values(),
-                      fg_.data(), &sim_.externs());
+    m.f_tape.tape->Evaluate(std::nextafter(t, std::numeric_limits<double>::infinity()),
+                            sim_.values() + m.f_tape.shift, fg_.data(), &sim_.externs());
     for (size_t j = 0; j < n; ++j)
-      if (tested[j] && joint_rows_[j] && std::abs(f[j]) > kRestRounding * std::abs(fg_[j]))
+      if (tested(j) && joint_rows_[j] && std::abs(f[j]) > kRestRounding * std::abs(fg_[j]))
         fn = std::max(fn, weighted(j));
   }
   if (fn == 0.0) return std::numeric_limits<double>::infinity();
   const double first = kRestFraction / fn;
   if (!(first >= kRestMinGain * h)) return 0.0;
   const double delta = 1.0 / fn;
-  for (size_t j = 0; j < n; ++j) y_[j] = tested[j] ? x[j] + delta * f[j] : x[j];
+  for (size_t j = 0; j < n; ++j) y_[j] = tested(j) ? x[j] + delta * f[j] : x[j];
   EvalF(m, t, y_.data(), fy_.data(), Side::kRight, false);
   double jf = 0.0;
   for (size_t j = 0; j < n; ++j)
-    if (tested[j])
+    if (tested(j))
       jf = std::max(jf, std::abs(fy_[j] - f[j]) / delta / (o.atol + o.rtol * std::abs(x[j])));
   const double second =
       jf > 0 ? std::sqrt(2.0 * kRestFraction / jf) : std::numeric_limits<double>::infinity();

@@ -10,12 +10,23 @@ namespace {
 
 std::vector<std::vector<int>> ReadsOf(const physics::EquationSystem& sys) {
   std::vector<std::vector<int>> reads(sys.variables.size());
+  // One walk per variable over its expressions' nodes, marked with the
+  // variable's stamp (Pool::Variables builds a hash set per call, which was
+  // a quarter of a resting body's set-up).
+  std::vector<size_t> stamp(sys.pool.size(), 0);
+  std::vector<expr::NodeId> stack;
   for (size_t i = 0; i < sys.variables.size(); ++i) {
     const auto& v = sys.variables[i];
-    reads[i] = sys.pool.Variables(v.rhs);
-    for (const auto& o : v.overrides) {
-      auto more = sys.pool.Variables(o.expr);
-      reads[i].insert(reads[i].end(), more.begin(), more.end());
+    stack.assign(1, v.rhs);
+    for (const auto& o : v.overrides) stack.push_back(o.expr);
+    while (!stack.empty()) {
+      const expr::NodeId id = stack.back();
+      stack.pop_back();
+      if (stamp[id] == i + 1) continue;
+      stamp[id] = i + 1;
+      const expr::Node& n = sys.pool.node(id);
+      if (n.op == expr::Op::kVar) reads[i].push_back(n.index);
+      stack.insert(stack.end(), n.args.begin(), n.args.end());
     }
   }
   // An exact joint's force depends on the whole state of every body it
