@@ -58,6 +58,7 @@ std::vector<std::vector<int>> ReadsOf(const physics::EquationSystem& sys) {
       for (int s :
            {physics::kDx, physics::kDy, physics::kDz, physics::kW1, physics::kW2, physics::kW3}) {
         auto& r = reads[own + s];
+        r.reserve(r.size() + physics::kBodySlots + 1);
         for (int k = 0; k < physics::kBodySlots; ++k) r.push_back(own + k);
         r.push_back(next);
       }
