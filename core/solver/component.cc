@@ -108,13 +108,15 @@ static Plan PlanStep(double t, double h, double bp, double t1) {
 }
 
 struct Component::Mode {
-  std::vector<char> prescribed;       // per local variable
-  expr::Tape f_tape;                  // n outputs: ẋ (ODE rows) or g (prescribed rows)
+  std::vector<char> prescribed;  // per local variable
+  // n outputs: ẋ (ODE rows) or g (prescribed rows); evaluated on the value
+  // array offset by its shift (TapeCache: shared with identical components).
+  TapeCache::Shared f_tape;
   std::vector<expr::NodeId> outputs;  // per row: ẋ's or g's expression
   // Built on first use (PrepareJacobian): everything below but `out` of f.
   expr::Tape fj_tape;           // the same followed by the Jacobian entries
   std::vector<int> jrow, jcol;  // local (row, col) of each Jacobian entry
-  expr::Tape gdot_tape;         // ∂g/∂t for prescribed rows whose g depends on t only
+  TapeCache::Shared gdot_tape;  // ∂g/∂t for prescribed rows whose g depends on t only
   std::vector<int> gdot_rows;
   std::vector<int> mrow, mcol;  // matrix pattern: n diagonal entries, then jrow/jcol
   std::vector<double> jvals, mvals, out;
@@ -123,10 +125,9 @@ struct Component::Mode {
   // No row depends on t (nor on a moving joint point): with constant inputs
   // a state where the rates vanish stays (rest steps).
   bool autonomous = false;
-  // Motion under constant forces (BallisticRows): per row, -1 where the rate
-  // is a constant, else the local row whose variable the rate is; empty when
+  // Motion under constant forces (BallisticRows); its rows are empty when
   // the mode is not of that form.
-  std::vector<int> ballistic;
+  Ballistic ballistic;
 };
 
 struct Component::Attempt {
@@ -224,7 +225,7 @@ void Component::StartSample() {
   // it; the stiffness test then waits for the votes of the steps.
   const Mode& m = ModeAt(sys_.t0);
   const bool still = m.autonomous && inputs_.empty() && std::isinf(RestSpan(m, 0.0));
-  wave_.info(0).implicit = !still && m.ballistic.empty() && InitialImplicit(sys_.t0);
+  wave_.info(0).implicit = !still && !(BallisticSpan(m, 0.0) > 0) && InitialImplicit(sys_.t0);
   jac_sample_ = -1;
 }
 
@@ -306,37 +307,72 @@ std::unique_ptr<Component::Mode> Component::BuildMode(const std::string& key, do
     }
   }
   m->outputs = outputs;
-  m->autonomous =
-      points_autonomous_ && std::none_of(outputs.begin(), outputs.end(),
-                                         [&](expr::NodeId e) { return pool.DependsOnTime(e); });
-  m->f_tape = expr::Tape::Compile(pool, outputs);
-  m->gdot_tape = expr::Tape::Compile(pool, gdots);
+  m->f_tape = sim_.tapes().Get(pool, outputs);
+  m->autonomous = points_autonomous_ && !m->f_tape.reads_time;
+  m->gdot_tape = sim_.tapes().Get(pool, gdots);
   m->any_prescribed =
       std::any_of(m->prescribed.begin(), m->prescribed.end(), [](char p) { return p != 0; });
   if (m->autonomous && !m->any_prescribed && !joints_ && inputs_.empty())
-    m->ballistic = BallisticRows(outputs);
+    m->ballistic = BallisticRows(outputs, m->prescribed);
   gdot_.resize(std::max(gdot_.size(), m->gdot_rows.size()));
   return m;
 }
 
 // A mode whose every rate is a constant a, or a variable v of ours whose own
 // rate is a constant (ẋ = v, v̇ = a: free flight under constant forces) moves
-// along the quadratic x + H v + H²/2 a exactly, over any span.
-std::vector<int> Component::BallisticRows(const std::vector<expr::NodeId>& outputs) const {
+// along the quadratic x + H v + H²/2 a exactly, over any span.  Two more
+// kinds of row keep their value: one a constant prescribes (a hold), and a
+// row of any other form whose rate is zero in a sample where every such row
+// and every constant-rate row they read have rate zero (`still`): such rows
+// read only each other and constants, so they are an autonomous subsystem
+// at an exact equilibrium — a ball's rotation at rest (q̇ = ½ q⊗ω with
+// ω = 0, ω̇ = 0) while it flies.
+Component::Ballistic Component::BallisticRows(const std::vector<expr::NodeId>& outputs,
+                                              const std::vector<char>& prescribed) const {
   const auto& pool = sys_.pool;
   const int n = static_cast<int>(vars_.size());
-  std::vector<int> rows(n, -1);
+  auto local = [&](int v) {
+    auto it = std::lower_bound(vars_.begin(), vars_.end(), v);
+    return it == vars_.end() || *it != v ? -1 : static_cast<int>(it - vars_.begin());
+  };
+  auto constant = [&](int k) { return pool.IsConst(outputs[k]); };
+  Ballistic b;
+  b.rows.assign(n, -1);
+  std::vector<char> other(n, 0);
   for (int j = 0; j < n; ++j) {
-    if (pool.IsConst(outputs[j])) continue;
+    if (constant(j)) continue;
+    if (prescribed[j]) return {};
     const expr::Node& node = pool.node(outputs[j]);
-    if (node.op != expr::Op::kVar) return {};
-    auto it = std::lower_bound(vars_.begin(), vars_.end(), node.index);
-    if (it == vars_.end() || *it != node.index) return {};
-    const int k = static_cast<int>(it - vars_.begin());
-    if (!pool.IsConst(outputs[k])) return {};
-    rows[j] = k;
+    const int k = node.op == expr::Op::kVar ? local(node.index) : -1;
+    if (k >= 0 && constant(k))
+      b.rows[j] = k;
+    else
+      other[j] = 1;
   }
-  return rows;
+  for (int j = 0; j < n; ++j) {
+    if (!other[j]) continue;
+    b.still.push_back(j);
+    for (int v : pool.Variables(outputs[j])) {
+      const int k = local(v);
+      if (k < 0 || !(other[k] || constant(k))) return {};
+      if (!other[k] && !prescribed[k]) b.still.push_back(k);
+    }
+  }
+  std::sort(b.still.begin(), b.still.end());
+  b.still.erase(std::unique(b.still.begin(), b.still.end()), b.still.end());
+  return b;
+}
+
+// How long the last sample's mode may move ballistically (BallisticRows):
+// for ever when its still rows' rates are zero, else as long as they would
+// move less than RestSpan allows (they are kept), else 0.
+double Component::BallisticSpan(const Mode& m, double h) {
+  if (m.ballistic.rows.empty()) return 0.0;
+  const double* f = wave_.f(wave_.size() - 1);
+  const auto& still = m.ballistic.still;
+  if (std::all_of(still.begin(), still.end(), [f](int j) { return f[j] == 0.0; }))
+    return std::numeric_limits<double>::infinity();
+  return RestSpan(m, h, &still);
 }
 
 // One exact step of a ballistic mode to the next breakpoint (or the step
@@ -349,12 +385,13 @@ void Component::BallisticStep(const Mode& m, double t, double h_max) {
   const Plan plan = PlanStep(t, h_max, NextBreakpoint(t), sys_.t1);
   const double h = plan.t_end - t;
   for (size_t j = 0; j < n; ++j)
-    if (m.ballistic[j] < 0) {
+    if (m.ballistic.rows[j] < 0) {
       x_[j] = x[j] + h * f[j];
       rate_[j] = f[j];
     }
+  for (int j : m.ballistic.still) x_[j] = x[j];  // at rest (to the tolerance)
   for (size_t j = 0; j < n; ++j)
-    if (const int v = m.ballistic[j]; v >= 0) {
+    if (const int v = m.ballistic.rows[j]; v >= 0) {
       x_[j] = x[j] + h * f[j] + 0.5 * h * h * f[v];
       rate_[j] = x_[v];
     }
@@ -382,7 +419,7 @@ void Component::EvalF(const Mode& m, double t, const double* y, double* out, Sid
   if (landing) te = std::nextafter(t, -std::numeric_limits<double>::infinity());
   if (side == Side::kRight) te = std::nextafter(t, std::numeric_limits<double>::infinity());
   const expr::ExternFn& ext = sim_.externs();
-  m.f_tape.Evaluate(te, sim_.values(), out, &ext);
+  m.f_tape.tape->Evaluate(te, sim_.values() + m.f_tape.shift, out, &ext);
   if (joints_) joints_->Apply(te, sim_.values(), out, m.prescribed.data(), &ext);
   ++counters_.rhs_evaluations;
 }
@@ -578,7 +615,7 @@ void Component::Rates(const Mode& m, double t, const double* y, const double* fy
   double* g = gdot_.data();
   double te = side == Side::kRight ? std::nextafter(t, std::numeric_limits<double>::infinity()) : t;
   const expr::ExternFn& ext = sim_.externs();
-  m.gdot_tape.Evaluate(te, sim_.values(), g, &ext);
+  m.gdot_tape.tape->Evaluate(te, sim_.values() + m.gdot_tape.shift, g, &ext);
   for (size_t i = 0; i < m.gdot_rows.size(); ++i) rate[m.gdot_rows[i]] = g[i];
 }
 
@@ -743,39 +780,45 @@ bool Component::CheckFinite() {
 // (it is an equilibrium).  0 when that is not worth a rest step against the
 // step `h` the integrator would try.  Only for autonomous modes without
 // inputs, where the rates at an unchanged state are unchanged.
-double Component::RestSpan(const Mode& m, double h) {
+double Component::RestSpan(const Mode& m, double h, const std::vector<int>* rows) {
   const int k = wave_.size() - 1;
   const size_t n = vars_.size();
   const double* x = wave_.x(k);
   const double* f = wave_.f(k);
   const SolverOptions& o = sim_.options();
+  // The rows tested: `rows`, else every row a constant does not prescribe.
+  if (rows) {
+    rest_rows_.assign(n, 0);
+    for (int j : *rows) rest_rows_[j] = 1;
+  }
+  auto tested = [&](size_t j) { return !m.prescribed[j] && (!rows || rest_rows_[j]); };
   // Rows no joint force acts on first: a moving body fails here, before the
   // free rates are evaluated (this runs at every step of such a component).
   const double t = wave_.time(k);
   auto weighted = [&](size_t j) { return std::abs(f[j]) / (o.atol + o.rtol * std::abs(x[j])); };
   double fn = 0.0;
   for (size_t j = 0; j < n; ++j)
-    if (!m.prescribed[j] && !(joints_ && joint_rows_[j])) fn = std::max(fn, weighted(j));
+    if (tested(j) && !(joints_ && joint_rows_[j])) fn = std::max(fn, weighted(j));
   if (fn > 0.0 && !(kRestFraction / fn >= kRestMinGain * h)) return 0.0;
   // A rate within rounding of the free rate that the joint forces balanced
   // (gravity against the joint holding a pendulum) counts as zero.
   if (joints_) {
     Load(t, x, Side::kRight);
-    m.f_tape.Evaluate(std::nextafter(t, std::numeric_limits<double>::infinity()), sim_.values(),
-                      fg_.data(), &sim_.externs());
+    m.f_tape.tape->Evaluate(std::nextafter(t, std::numeric_limits<double>::infinity()),
+                            sim_.values() + m.f_tape.shift, fg_.data(), &sim_.externs());
     for (size_t j = 0; j < n; ++j)
-      if (!m.prescribed[j] && joint_rows_[j] && std::abs(f[j]) > kRestRounding * std::abs(fg_[j]))
+      if (tested(j) && joint_rows_[j] && std::abs(f[j]) > kRestRounding * std::abs(fg_[j]))
         fn = std::max(fn, weighted(j));
   }
   if (fn == 0.0) return std::numeric_limits<double>::infinity();
   const double first = kRestFraction / fn;
   if (!(first >= kRestMinGain * h)) return 0.0;
   const double delta = 1.0 / fn;
-  for (size_t j = 0; j < n; ++j) y_[j] = m.prescribed[j] ? x[j] : x[j] + delta * f[j];
+  for (size_t j = 0; j < n; ++j) y_[j] = tested(j) ? x[j] + delta * f[j] : x[j];
   EvalF(m, t, y_.data(), fy_.data(), Side::kRight, false);
   double jf = 0.0;
   for (size_t j = 0; j < n; ++j)
-    if (!m.prescribed[j])
+    if (tested(j))
       jf = std::max(jf, std::abs(fy_[j] - f[j]) / delta / (o.atol + o.rtol * std::abs(x[j])));
   const double second =
       jf > 0 ? std::sqrt(2.0 * kRestFraction / jf) : std::numeric_limits<double>::infinity();
@@ -795,7 +838,7 @@ bool Component::Step() {
   const double h_min =
       std::max(1e-13 * span, 8 * std::numeric_limits<double>::epsilon() * std::abs(t));
   const SampleInfo info = wave_.info(k);
-  const Mode& mode = ModeAt(t);
+  Mode& mode = ModeAt(t);
   const bool implicit = UseImplicit(mode, info);
   const bool auto_method = o.method == SolverOptions::Method::kAuto && !mode.any_prescribed;
   double h = std::min(info.h_next, h_max);
@@ -815,9 +858,12 @@ bool Component::Step() {
       return true;
     }
   }
-  if (!mode.ballistic.empty() && o.method == SolverOptions::Method::kAuto) {
-    BallisticStep(mode, t, h_max);
-    return true;
+  if (o.method == SolverOptions::Method::kAuto && !mode.ballistic.rows.empty()) {
+    const double ballistic = BallisticSpan(mode, std::min(h, h_max));
+    if (ballistic > 0) {
+      BallisticStep(mode, t, std::min(ballistic, h_max));
+      return true;
+    }
   }
   bool rejected = false;
   for (;;) {

@@ -96,6 +96,9 @@ struct SolverOptions {
   double max_step = 0.0;      // 0: the whole interval
   bool partition = true;      // false: one component for everything
   bool fuse_chains = true;    // fuse one-to-one chains of components (partition.h)
+  // With fuse_chains: fuse a body's components where they form an island
+  // (partition.h), unless a trajectory prescribes one of its variables.
+  bool fuse_bodies = true;
   enum class Schedule : uint8_t { kEventDriven, kSequential };
   Schedule schedule = Schedule::kEventDriven;
   // kAuto: the explicit Dormand–Prince pair where the component is not stiff,
@@ -212,7 +215,18 @@ class Component {
   Mode& ModeAt(double t);
   std::string ModeKey(double t) const;
   std::unique_ptr<Mode> BuildMode(const std::string& key, double t);
-  std::vector<int> BallisticRows(const std::vector<expr::NodeId>& outputs) const;
+  // Rows of a mode in free flight under constant forces: per row, -1 where
+  // the rate is a constant (or a constant prescribes the value, or the row is
+  // still), else the local row whose variable the rate is; `still`: rows
+  // whose rates must be zero at a sample for the mode to move so.
+  struct Ballistic {
+    std::vector<int> rows;
+    std::vector<int> still;
+  };
+  Ballistic BallisticRows(const std::vector<expr::NodeId>& outputs,
+                          const std::vector<char>& prescribed) const;
+  // Span over which the last sample's mode moves ballistically, or 0.
+  double BallisticSpan(const Mode& m, double h);
   void BallisticStep(const Mode& m, double t, double h_max);
   // Fills the global value array with y and with the inputs at t.
   void Load(double t, const double* y, Side side);
@@ -234,7 +248,8 @@ class Component {
   double SpectralRadius(const Mode& m);
   double SpectralRadiusMatrixFree(const Mode& m, double t);
   bool InitialImplicit(double t);
-  double RestSpan(const Mode& m, double h);
+  // `rows`: test only these rows (the still rows of a ballistic mode).
+  double RestSpan(const Mode& m, double h, const std::vector<int>* rows = nullptr);
   void Restart();
   bool PendingRestart() const;
   double NextBreakpoint(double t) const;
@@ -291,7 +306,8 @@ class Component {
   std::vector<double> x_, y_, fy_, yg_, fg_, c_, r_, est_, rate_, rowsum_, pv_, pw_, gdot_;
   std::vector<double> k_[7];  // Dormand–Prince stages
   std::vector<double> bubble_;
-  SampleInfo next_info_;  // method state to store with the sample a step appends
+  std::vector<char> rest_rows_;  // RestSpan's rows
+  SampleInfo next_info_;         // method state to store with the sample a step appends
 };
 
 }  // namespace asgard::solver

@@ -85,6 +85,28 @@ void LinkComponents(const std::vector<std::vector<int>>& reads, Partition& p) {
   }
 }
 
+// Replaces the components by their groups: `head[c]` is the member whose
+// place in the order c's group takes (head[head[c]] == head[c]).
+void Contract(const std::vector<std::vector<int>>& reads, const std::vector<int>& head,
+              Partition& p) {
+  const int nc = static_cast<int>(p.components.size());
+  std::vector<std::vector<int>> fused;
+  std::vector<int> slot(nc, -1);  // head → index in `fused`
+  for (int c = 0; c < nc; ++c) {
+    if (head[c] != c) continue;  // placed with the group's head
+    slot[c] = static_cast<int>(fused.size());
+    fused.emplace_back();
+  }
+  if (static_cast<int>(fused.size()) == nc) return;
+  for (int c = 0; c < nc; ++c) {
+    auto& group = fused[slot[head[c]]];
+    group.insert(group.end(), p.components[c].begin(), p.components[c].end());
+  }
+  for (auto& g : fused) std::sort(g.begin(), g.end());
+  p.components = std::move(fused);
+  LinkComponents(reads, p);
+}
+
 // Fuses each component with the components it reads when it alone reads
 // each of them ({dx} ─▶ {x}; a ball's three spins ─▶ its quaternion;
 // transitively, so a chain becomes one component).  Inductively only a
@@ -110,27 +132,46 @@ void FuseChains(const std::vector<std::vector<int>>& reads, Partition& p) {
   }
   std::vector<int> head(nc);  // per component: its group's root (last member)
   for (int c = 0; c < nc; ++c) head[c] = find(c);
-  std::vector<std::vector<int>> fused;
-  std::vector<int> slot(nc, -1);  // head → index in `fused`
+  Contract(reads, head, p);
+}
+
+// Fuses the components of each body (`body_of[v]`: v's body, or -1 for a
+// variable that must stay apart) that form an island: every component holds
+// only that body's variables, and none is read by or reads a component
+// outside them.  With no arc leaving or entering the group, its place in the
+// order does not matter; it takes its last member's.
+void FuseBodies(const std::vector<std::vector<int>>& reads, const std::vector<int>& body_of,
+                Partition& p) {
+  const int nc = static_cast<int>(p.components.size());
+  std::vector<int> body(nc, -1);  // per component: its one body, or -1
   for (int c = 0; c < nc; ++c) {
-    if (head[c] != c) continue;  // placed with the group's last member
-    slot[head[c]] = static_cast<int>(fused.size());
-    fused.emplace_back();
+    body[c] = body_of[p.components[c].front()];
+    for (int v : p.components[c])
+      if (body_of[v] != body[c]) body[c] = -1;
   }
+  // A body is fused when no component of it is mixed or coupled outside it.
+  const size_t nb = static_cast<size_t>(*std::max_element(body_of.begin(), body_of.end()) + 1);
+  std::vector<char> apart(nb, 0);  // per body
   for (int c = 0; c < nc; ++c) {
-    auto& group = fused[slot[head[c]]];
-    group.insert(group.end(), p.components[c].begin(), p.components[c].end());
+    bool island = body[c] >= 0;
+    for (const auto* arcs : {&p.upstream[c], &p.downstream[c]})
+      for (int u : *arcs) island = island && body[u] == body[c];
+    if (island) continue;
+    for (int v : p.components[c])
+      if (body_of[v] >= 0) apart[body_of[v]] = 1;
   }
-  if (static_cast<int>(fused.size()) == nc) return;
-  for (auto& g : fused) std::sort(g.begin(), g.end());
-  p.components = std::move(fused);
-  LinkComponents(reads, p);
+  std::vector<int> last(nb, -1);  // per body: its last component
+  for (int c = 0; c < nc; ++c)
+    if (body[c] >= 0 && !apart[body[c]]) last[body[c]] = c;
+  std::vector<int> head(nc);
+  for (int c = 0; c < nc; ++c) head[c] = body[c] >= 0 && !apart[body[c]] ? last[body[c]] : c;
+  Contract(reads, head, p);
 }
 
 }  // namespace
 
 Partition PartitionEquations(const std::vector<std::vector<int>>& reads, bool single,
-                             bool fuse_chains) {
+                             bool fuse_chains, const std::vector<int>& body_of) {
   const int n = static_cast<int>(reads.size());
   Partition p;
   if (single) {
@@ -143,6 +184,7 @@ Partition PartitionEquations(const std::vector<std::vector<int>>& reads, bool si
   }
   LinkComponents(reads, p);
   if (fuse_chains && !single) FuseChains(reads, p);
+  if (!body_of.empty() && !single && !p.components.empty()) FuseBodies(reads, body_of, p);
   return p;
 }
 

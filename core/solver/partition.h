@@ -35,7 +35,15 @@ struct Partition {
 // about the same steps several times, and the reader pays an interpolation
 // of the others' waveforms at every stage; together they take one set of
 // steps.
+//
+// With `body_of` (per variable: its body, or -1 to keep it apart; empty: no
+// body fusion) a body's components that form an island — each holds only
+// that body's variables, and none reads or is read by a component outside
+// them — become one component: a free ball's three axes and its rotation
+// take one step together (one ballistic step when it flies under constant
+// forces with its spin at rest) rather than one each.  Nothing else reads
+// them, so no other component's steps change.
 Partition PartitionEquations(const std::vector<std::vector<int>>& reads, bool single = false,
-                             bool fuse_chains = false);
+                             bool fuse_chains = false, const std::vector<int>& body_of = {});
 
 }  // namespace asgard::solver

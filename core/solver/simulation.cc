@@ -10,12 +10,23 @@ namespace {
 
 std::vector<std::vector<int>> ReadsOf(const physics::EquationSystem& sys) {
   std::vector<std::vector<int>> reads(sys.variables.size());
+  // One walk per variable over its expressions' nodes, marked with the
+  // variable's stamp (Pool::Variables builds a hash set per call, which was
+  // a quarter of a resting body's set-up).
+  std::vector<size_t> stamp(sys.pool.size(), 0);
+  std::vector<expr::NodeId> stack;
   for (size_t i = 0; i < sys.variables.size(); ++i) {
     const auto& v = sys.variables[i];
-    reads[i] = sys.pool.Variables(v.rhs);
-    for (const auto& o : v.overrides) {
-      auto more = sys.pool.Variables(o.expr);
-      reads[i].insert(reads[i].end(), more.begin(), more.end());
+    stack.assign(1, v.rhs);
+    for (const auto& o : v.overrides) stack.push_back(o.expr);
+    while (!stack.empty()) {
+      const expr::NodeId id = stack.back();
+      stack.pop_back();
+      if (stamp[id] == i + 1) continue;
+      stamp[id] = i + 1;
+      const expr::Node& n = sys.pool.node(id);
+      if (n.op == expr::Op::kVar) reads[i].push_back(n.index);
+      stack.insert(stack.end(), n.args.begin(), n.args.end());
     }
   }
   // An exact joint's force depends on the whole state of every body it
@@ -47,6 +58,7 @@ std::vector<std::vector<int>> ReadsOf(const physics::EquationSystem& sys) {
       for (int s :
            {physics::kDx, physics::kDy, physics::kDz, physics::kW1, physics::kW2, physics::kW3}) {
         auto& r = reads[own + s];
+        r.reserve(r.size() + physics::kBodySlots + 1);
         for (int k = 0; k < physics::kBodySlots; ++k) r.push_back(own + k);
         r.push_back(next);
       }
@@ -64,7 +76,18 @@ std::vector<std::vector<int>> ReadsOf(const physics::EquationSystem& sys) {
 Simulation::Simulation(const physics::EquationSystem& system, SolverOptions options)
     : sys_(system), options_(options) {
   reads_ = ReadsOf(sys_);
-  partition_ = PartitionEquations(reads_, !options_.partition, options_.fuse_chains);
+  // Per-body fusion: a body whose variables a trajectory prescribes stays
+  // apart (a prescribed row puts its whole component on the implicit path).
+  std::vector<int> body_of;
+  if (options_.fuse_chains && options_.fuse_bodies) {
+    body_of.assign(sys_.variables.size(), -1);
+    std::vector<char> prescribed(sys_.bodies.size(), 0);
+    for (const auto& v : sys_.variables)
+      if (v.body >= 0 && !v.overrides.empty()) prescribed[v.body] = 1;
+    for (size_t i = 0; i < sys_.variables.size(); ++i)
+      if (const int b = sys_.variables[i].body; b >= 0 && !prescribed[b]) body_of[i] = b;
+  }
+  partition_ = PartitionEquations(reads_, !options_.partition, options_.fuse_chains, body_of);
   values_.assign(sys_.variables.size(), 0.0);
   externs_ = sys_.externs();
   const double span = sys_.t1 - sys_.t0;

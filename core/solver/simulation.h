@@ -37,6 +37,7 @@
 #include "core/physics/equations.h"
 #include "core/solver/component.h"
 #include "core/solver/partition.h"
+#include "core/solver/tape_cache.h"
 
 namespace asgard::solver {
 
@@ -155,6 +156,8 @@ class Simulation {
   double InputValue(int var, double t, Side side) const;
   const expr::ExternFn& externs() const { return externs_; }
   double restart_step() const { return restart_step_; }
+  // Rate tapes shared among components with the same equations.
+  TapeCache& tapes() { return tapes_; }
 
  private:
   // Counts nested truncations; the outermost one, when it ends, calls
@@ -190,6 +193,7 @@ class Simulation {
   std::vector<double> values_;
   expr::ExternFn externs_;
   double restart_step_ = 0.0;
+  TapeCache tapes_;
   struct Entry {
     double t;
     int c;

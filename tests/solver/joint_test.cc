@@ -6,8 +6,8 @@
 #include <cstdio>
 #include <string>
 
-#include "core/pipeline/pipeline.h"
 #include "core/physics/joints.h"
+#include "core/pipeline/pipeline.h"
 #include "tests/solver/reference_problems.h"
 
 namespace asgard {
@@ -15,8 +15,9 @@ namespace {
 
 using physics::BodySlot;
 
-pipeline::Run Simulate(const std::string& text, double rtol, double atol,
-             solver::SolverOptions::Method method = solver::SolverOptions::Method::kAuto) {
+pipeline::Run Simulate(
+    const std::string& text, double rtol, double atol,
+    solver::SolverOptions::Method method = solver::SolverOptions::Method::kAuto) {
   pipeline::RunOptions opts;
   opts.solver.rtol = rtol;
   opts.solver.atol = atol;
@@ -96,9 +97,9 @@ TEST(ExactJoint, ErrorFallsMonotonicallyWithTheTolerance) {
     double worst = 0.0;
     for (double t = 0.0; t <= 5.0; t += 0.1) {
       const double th = PendulumAngle(L, theta0, t);
-      worst = std::max(worst, (Position(run, "m", t) -
-                               Eigen::Vector3d(L * std::sin(th), -L * std::cos(th), 0))
-                                      .norm());
+      worst = std::max(
+          worst,
+          (Position(run, "m", t) - Eigen::Vector3d(L * std::sin(th), -L * std::cos(th), 0)).norm());
     }
     EXPECT_LT(worst, previous) << "rtol " << rtol;
     previous = worst;
@@ -117,7 +118,8 @@ std::string Chain(int n, double finish, bool closed_loop = false) {
     s += "body " + b + " -shape rod -mass 1 -init_pos {" + std::to_string(i + 0.5) + " 0 0}" +
          " -ct 0\n";
     s += "force -body " + b + " -x 0 -y -9.81 -z 0 -gravitational 1\n";
-    if (i == 0) s += "link -body1 r0 -offset1 {-0.5 0 0} -x 0 -y 0 -z 0\n";
+    if (i == 0)
+      s += "link -body1 r0 -offset1 {-0.5 0 0} -x 0 -y 0 -z 0\n";
     else
       s += "link -body1 r" + std::to_string(i - 1) + " -offset1 {0.5 0 0} -body2 " + b +
            " -offset2 {-0.5 0 0}\n";
@@ -160,7 +162,8 @@ double WorstJointGap(const pipeline::Run& run, double finish) {
       };
       const Eigen::Vector3d pa = point(j.body_a, j.s_a);
       Eigen::Vector3d pb;
-      if (j.body_b >= 0) pb = point(j.body_b, j.s_b);
+      if (j.body_b >= 0)
+        pb = point(j.body_b, j.s_b);
       else
         pb = Eigen::Vector3d(*sys.pool.ConstValue(j.p[0]), *sys.pool.ConstValue(j.p[1]),
                              *sys.pool.ConstValue(j.p[2]));
@@ -230,8 +233,9 @@ TEST(ExactJoint, AJointHitByABallMovesItsGroupAndKeepsMomentum) {
     const Eigen::Quaterniond q(val(physics::kQw), val(physics::kQx), val(physics::kQy),
                                val(physics::kQz));
     const Eigen::Vector3d w(val(physics::kW1), val(physics::kW2), val(physics::kW3));
-    return Eigen::Vector3d(Eigen::Vector3d(val(physics::kDx), val(physics::kDy), val(physics::kDz)) +
-                           q.normalized() * w.cross(s));
+    return Eigen::Vector3d(
+        Eigen::Vector3d(val(physics::kDx), val(physics::kDy), val(physics::kDz)) +
+        q.normalized() * w.cross(s));
   };
   const Eigen::Vector3d zero = Eigen::Vector3d::Zero();
   EXPECT_LT(point_velocity("r0", zero, solver::Side::kLeft).norm(), 1e-9);
@@ -312,8 +316,7 @@ TEST(NonFinite, AValueThatIsNotFiniteStopsTheRunNamingTheVariableTimeAndLine) {
   };
   for (const Case& c : cases) {
     pipeline::RunOptions opts;
-    const pipeline::Run run =
-        pipeline::Simulate(std::string(testing::kBallShape) + c.scene, opts);
+    const pipeline::Run run = pipeline::Simulate(std::string(testing::kBallShape) + c.scene, opts);
     EXPECT_FALSE(run.ok) << c.scene;
     EXPECT_NE(run.solver_error.find(c.variable), std::string::npos) << run.solver_error;
     EXPECT_NE(run.solver_error.find("line 2: body b"), std::string::npos) << run.solver_error;

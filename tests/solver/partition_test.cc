@@ -1,7 +1,11 @@
 // Tarjan partitioning on hand-made reference graphs.
+#include "core/solver/partition.h"
+
 #include <gtest/gtest.h>
 
-#include "core/solver/partition.h"
+#include <cmath>
+
+#include "core/solver/tape_cache.h"
 
 namespace asgard::solver {
 namespace {
@@ -38,6 +42,44 @@ TEST(PartitionEquations, ALongChainDoesNotOverflowTheStack) {
   const Partition p = PartitionEquations(reads);
   ASSERT_EQ(p.components.size(), 1u);
   EXPECT_EQ(p.components[0].size(), static_cast<size_t>(n));
+}
+
+// Two bodies' rates, the same up to the shift of their variables: one tape,
+// evaluated on the shifted values, bit for bit what a tape of its own gives.
+// A different constant, a different variable pattern or a negative shift
+// compiles a tape of its own.
+TEST(TapeCache, SharesATapeBetweenEquationsEqualUpToAShiftOfTheirVariables) {
+  expr::Pool pool;
+  // f(base) = {sin(x_b) · x_{b+1} + 2.5, x_{b+1}² − t}
+  auto rates = [&](int b, double k) {
+    const expr::NodeId s = pool.Apply(expr::Op::kSin, std::vector<expr::NodeId>{pool.Var(b)});
+    return std::vector<expr::NodeId>{
+        pool.Add(pool.Mul(s, pool.Var(b + 1)), pool.Const(k)),
+        pool.Sub(pool.Pow(pool.Var(b + 1), pool.Const(2.0)), pool.Time())};
+  };
+  TapeCache cache;
+  const auto a = cache.Get(pool, rates(2, 2.5));
+  const auto b = cache.Get(pool, rates(7, 2.5));
+  EXPECT_EQ(cache.compiled(), 1);
+  EXPECT_EQ(b.tape, a.tape);
+  EXPECT_EQ(b.shift, 5);
+  EXPECT_TRUE(b.reads_time);
+  const double x[10] = {0, 0, 0.3, -1.7, 0, 0, 0, 1.1, 0.25, 0};
+  double shared[2], own[2];
+  b.tape->Evaluate(0.75, x + b.shift, shared);
+  const expr::Tape mine = expr::Tape::Compile(pool, rates(7, 2.5));
+  mine.Evaluate(0.75, x, own);
+  EXPECT_EQ(shared[0], own[0]);
+  EXPECT_EQ(shared[1], own[1]);
+  EXPECT_DOUBLE_EQ(shared[0], std::sin(1.1) * 0.25 + 2.5);
+  // Different constant; variables out of step (x_b and x_{b+2}); below the
+  // first tape's variables (a negative shift).
+  EXPECT_NE(cache.Get(pool, rates(4, 3.5)).tape, a.tape);
+  const std::vector<expr::NodeId> apart = {pool.Add(pool.Var(3), pool.Var(5))};
+  const std::vector<expr::NodeId> near = {pool.Add(pool.Var(3), pool.Var(4))};
+  EXPECT_NE(cache.Get(pool, apart).tape, cache.Get(pool, near).tape);
+  EXPECT_NE(cache.Get(pool, rates(0, 2.5)).tape, a.tape);
+  EXPECT_EQ(cache.shared(), 1);
 }
 
 }  // namespace

@@ -222,10 +222,20 @@ TEST(Partition, ALoneSphereUnderGravitySplitsPerAxis) {
   EXPECT_EQ(sim.partition().upstream[cx], std::vector<int>{cdx});
 }
 
+// Projectile p's positions and vertical velocity agree between two runs.
+void ExpectSameProjectile(const SceneRun& a, const SceneRun& b, double tol) {
+  for (double t : {0.25, 0.5, 1.0})
+    for (BodySlot s : {physics::kX, physics::kY, physics::kZ, physics::kDy})
+      EXPECT_NEAR(At(a, "p", s, t), At(b, "p", s, t), tol) << t;
+}
+
 TEST(Partition, FusedChainsPairEachAxisWithItsRateAndTheSpinWithTheQuaternion) {
   // {dx} is read by {x} alone and {x} reads only {dx}: one component.  The
   // quaternion alone reads each of the three spin components: one more.
-  const SceneRun fused = SimulateOk(testing::Projectile(1.0));
+  // (Without per-body fusion, which would make the four one: next test.)
+  solver::SolverOptions chains;
+  chains.fuse_bodies = false;
+  const SceneRun fused = SimulateOk(testing::Projectile(1.0), chains);
   const auto& sim = *fused.simulation;
   for (auto [a, b] : {std::pair{physics::kX, physics::kDx}, std::pair{physics::kY, physics::kDy},
                       std::pair{physics::kZ, physics::kDz}}) {
@@ -243,9 +253,42 @@ TEST(Partition, FusedChainsPairEachAxisWithItsRateAndTheSpinWithTheQuaternion) {
   solver::SolverOptions so;
   so.fuse_chains = false;
   const SceneRun apart = SimulateOk(testing::Projectile(1.0), so);
-  for (double t : {0.25, 0.5, 1.0})
-    for (BodySlot s : {physics::kX, physics::kY, physics::kZ, physics::kDy})
-      EXPECT_NEAR(At(fused, "p", s, t), At(apart, "p", s, t), 1e-6) << t;
+  ExpectSameProjectile(fused, apart, 1e-6);
+}
+
+TEST(Partition, AFreeBodyIsOneComponentAndABodyCoupledToAnotherIsNot) {
+  // The projectile's axes and rotation form an island: one component of 13,
+  // the same motion as apart.  b1 and b2 share their x axis through a mutual
+  // force, so neither body fuses; b3's y reads b1's y (one way), which it
+  // alone reads, so the two y chains are one component (chain fusion) and
+  // neither b1 nor b3 is an island.  b4 is free: one component.
+  const SceneRun one = SimulateOk(testing::Projectile(1.0));
+  const auto& sim = *one.simulation;
+  EXPECT_EQ(sim.component_count(), 1);
+  EXPECT_EQ(sim.component(0).variables().size(), static_cast<size_t>(physics::kBodySlots));
+  solver::SolverOptions apart_options;
+  apart_options.fuse_bodies = false;
+  const SceneRun apart = SimulateOk(testing::Projectile(1.0), apart_options);
+  ExpectSameProjectile(one, apart, 1e-12);
+  const std::string text = std::string(testing::kBallShape) + testing::Ball("b1", "-2 0 0") +
+                           testing::Ball("b2", "2 1 0") + testing::Ball("b3", "0 5 0") +
+                           testing::Ball("b4", "0 9 0") +
+                           "force -body b1 -x {(b2.x - b1.x)} -y 0 -z 0\n"
+                           "force -body b2 -x {(b1.x - b2.x)} -y 0 -z 0\n"
+                           "force -body b3 -x 0 -y {b1.y - b3.y} -z 0\n"
+                           "simulator -finish 1 -collisions 0\n";
+  const SceneRun run = SimulateOk(text);
+  const auto& s2 = *run.simulation;
+  auto size_of = [&](const char* body, BodySlot slot) {
+    return s2.component(s2.component_of(Var(run, body, slot))).variables().size();
+  };
+  EXPECT_EQ(size_of("b1", physics::kX), 4u);  // {x, dx} of b1 and b2
+  EXPECT_EQ(size_of("b1", physics::kY), 4u);  // {y, dy} of b1 and b3
+  EXPECT_EQ(size_of("b3", physics::kY), 4u);
+  EXPECT_EQ(size_of("b3", physics::kX), 2u);
+  EXPECT_EQ(size_of("b4", physics::kX), static_cast<size_t>(physics::kBodySlots));
+  for (size_t c = 0; c < static_cast<size_t>(s2.component_count()); ++c)
+    for (int u : s2.partition().upstream[c]) EXPECT_LT(u, static_cast<int>(c));
 }
 
 TEST(Partition, ComponentsAreFusedOnlyWhereOneComponentAloneReadsThem) {

@@ -1,9 +1,9 @@
 // Waveform storage, truncation and Hermite interpolation.
+#include "core/solver/waveform.h"
+
 #include <gtest/gtest.h>
 
 #include <cmath>
-
-#include "core/solver/waveform.h"
 
 namespace asgard::solver {
 namespace {

@@ -1,0 +1,65 @@
+// Compiled tapes shared among components whose equations are the same up to
+// a shift of the variable indices: the idle pendulums of a scene, a crowd of
+// identical balls.  Compiling a body's rate tape costs ~30k instructions, a
+// third of a resting component's whole set-up; a component whose equations
+// equal another's (each node the same operation, constant, extern and
+// operand order, every variable index larger by one shift) evaluates that
+// component's tape on the value array offset by the shift instead, with
+// bit-identical results (the same instructions on the same values).
+//
+// Lookup: a hash of the outputs' top nodes picks the candidates (at most
+// kCandidates per hash, so a scene of many different equations with equal
+// hashes costs a bounded number of comparisons per component); a full
+// comparison of the two DAGs, memoized per node, confirms the match.  The
+// shift must not be negative: the tape's lowest variable plus the shift is
+// the component's own lowest variable, so the offset array stays inside the
+// value array.
+#pragma once
+
+#include <cstdint>
+#include <memory>
+#include <unordered_map>
+#include <vector>
+
+#include "core/expr/expr.h"
+
+namespace asgard::solver {
+
+class TapeCache {
+ public:
+  struct Shared {
+    std::shared_ptr<const expr::Tape> tape;
+    int shift = 0;            // evaluate on values + shift
+    bool reads_time = false;  // some output depends on t (Time or an extern)
+  };
+  // A tape computing `outputs`, compiled now or shared with an earlier call.
+  Shared Get(const expr::Pool& pool, const std::vector<expr::NodeId>& outputs);
+  // Tapes compiled and tapes shared so far.
+  long compiled() const { return compiled_; }
+  long shared() const { return shared_; }
+
+ private:
+  struct Entry {
+    std::vector<expr::NodeId> outputs;
+    int lowest;  // lowest variable index read, or -1
+    std::shared_ptr<const expr::Tape> tape;
+    bool reads_time;
+  };
+  static constexpr size_t kCandidates = 4;
+  // The lowest variable index any of `outputs` reads, or -1; sets
+  // `reads_time` when one of them depends on t.
+  int Lowest(const expr::Pool& pool, const std::vector<expr::NodeId>& outputs, bool& reads_time);
+  uint64_t Hash(const expr::Pool& pool, const std::vector<expr::NodeId>& outputs, int lowest) const;
+  bool Same(const expr::Pool& pool, const std::vector<expr::NodeId>& a,
+            const std::vector<expr::NodeId>& b, int shift);
+
+  std::unordered_map<uint64_t, std::vector<Entry>> entries_;
+  // Scratch over pool nodes: per node of a compared DAG, its partner + 1
+  // (Same), or the last walk that visited it (Lowest).
+  std::vector<expr::NodeId> mark_;
+  std::vector<expr::NodeId> touched_, stack_;
+  std::vector<std::pair<expr::NodeId, expr::NodeId>> pairs_;
+  long compiled_ = 0, shared_ = 0;
+};
+
+}  // namespace asgard::solver
