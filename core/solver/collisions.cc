@@ -265,6 +265,12 @@ CollisionMonitor::CollisionMonitor(Simulation& sim, double separation)
     }
     UpdateEnd(static_cast<int>(b));
   }
+  // The static bodies' boxes, widened by the landing gap, in the broad
+  // phase's tree for the whole run.
+  for (size_t b = 0; b < bodies_.size(); ++b)
+    if (bodies_[b].collidable && sys_.bodies[b].first_var < 0)
+      broad_.AddStatic(static_cast<int>(b), bodies_[b].lo - Eigen::Vector3d::Constant(separation_),
+                       bodies_[b].hi + Eigen::Vector3d::Constant(separation_));
   // Bodies land this close before an impact.  Positions are only as exact as
   // the solver's tolerance, and after an impact the components re-step to it,
   // so the gap must exceed that error or the re-stepped bodies would overlap.
@@ -438,17 +444,13 @@ bool CollisionMonitor::Prescribed(int b, double t) const {
 bool CollisionMonitor::CheckEpoch() {
   const double e0 = EpochStart(epoch_), e1 = EpochStart(epoch_ + 1);
   ++counters_.windows;
-  collide::BroadPhase broad;
+  collide::BroadPhase& broad = broad_;
+  broad.Clear();  // the static bodies' boxes stay (constructor)
   for (size_t b = 0; b < bodies_.size(); ++b) {
     const BodyInfo& info = bodies_[b];
-    if (!info.collidable) continue;
-    Eigen::Vector3d lo, hi;
     const physics::BodyModel& m = sys_.bodies[b];
-    if (m.first_var < 0) {
-      const Eigen::Vector3d r = Eigen::Vector3d::Constant(separation_);
-      broad.Add(static_cast<int>(b), info.lo - r, info.hi + r);
-      continue;
-    }
+    if (!info.collidable || m.first_var < 0) continue;
+    Eigen::Vector3d lo, hi;
     for (int a = 0; a < 3; ++a) {
       const int var = m.first_var + physics::kX + a;
       lo[a] = hi[a] = sim_.Value(var, e0);
@@ -1143,9 +1145,15 @@ void CollisionMonitor::AfterTruncate() {
     truncated_.clear();
     for (auto [b, kept] : work) {
       UpdateEnd(b);
-      earliest = std::min(earliest, kept);
       // Impacts after `kept` involving b were computed from data that is gone.
       const double limit = responding_ ? std::max(kept, respond_time_) : kept;
+      // The windows to check again start at the first change.  A response's
+      // jump at t changes nothing before t: the components re-step from
+      // their last sample up to t through the same motion (a ballistic ball
+      // may have its last sample seconds back), and checking every window
+      // since that sample again after each impact made the checks grow with
+      // impacts × span × pairs.
+      earliest = std::min(earliest, limit);
       // impacts_ is sorted by time: only its tail after `limit` can go.
       auto after = std::upper_bound(impacts_.begin(), impacts_.end(), limit,
                                     [](double t, const Impact& x) { return t < x.t; });

@@ -6,7 +6,8 @@
 // checked over an interval both bodies are known over (seed 5.2.3):
 //
 //   epoch k  [E0 ──────────────── E1]
-//     broad phase   boxes bounding each body's sphere over the window → sweep and prune
+//     broad phase   boxes bounding each body's sphere over the window → sweep and prune;
+//                   static bodies' exact boxes in a tree of their own (never paired)
 //     narrow phase  per candidate pair and piece pair: TimeOfImpact from the pair's
 //                   start (E0, or the last impact of either body inside the window)
 //     response      the earliest impact (ties: lowest pair) gets an impulse; the
@@ -163,6 +164,7 @@ class CollisionMonitor {
   bool idle_ = false;  // no pair can collide: no windows are checked
   long pending_ = 0;   // collidable bodies not yet computed past its end
   std::vector<BodyInfo> bodies_;
+  collide::BroadPhase broad_;  // the static bodies' boxes, and each window's moving ones
   std::vector<std::vector<int>> bodies_of_component_;
   std::set<std::pair<int, int>> excluded_;  // directly linked parts of one artbody
   std::vector<Impact> impacts_;             // sorted by time

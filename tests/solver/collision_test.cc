@@ -355,6 +355,57 @@ TEST(Collision, TruncationAfterAnImpactReproducesTheRunBitForBit) {
   EXPECT_EQ(idle_steps, 0);  // the impact never rolled back the idle body
 }
 
+// Balls (radius 0.2) bouncing elastically in a closed box of six static walls.
+std::string BallsInABox(int n, double t1) {
+  std::ostringstream text;
+  text.precision(17);
+  text << Sphere(0.2) << "shape_set wx -desc {-sub {-box {1 12 12}}}\n"
+       << "shape_set wy -desc {-sub {-box {12 1 12}}}\n"
+       << "shape_set wz -desc {-sub {-box {12 12 1}}}\n";
+  for (int k = 0; k < 6; ++k) {
+    Eigen::Vector3d p = Eigen::Vector3d::Zero();
+    p[k / 2] = k % 2 ? 5.5 : -5.5;
+    text << "body w" << k << " -shape w"
+         << "xyz"[k / 2] << " -static 1 -restitution 1 -init_pos {" << p.x() << " " << p.y() << " "
+         << p.z() << "}\n";
+  }
+  for (int i = 0; i < n; ++i) {
+    // On a 3 × 3 × 3 grid 3 apart, moving at about 2 in a direction of its own.
+    const Eigen::Vector3d p(3.0 * (i % 3 - 1), 3.0 * (i / 3 % 3 - 1), 3.0 * (i / 9 - 1));
+    const Eigen::Vector3d v(2.0 * std::cos(1.3 * i), 1.5 * std::sin(0.7 * i + 1), 1.0 + 0.1 * i);
+    text << "body b" << i << " -shape ball -mass 1 -restitution 1 -init_pos {" << p.x() << " "
+         << p.y() << " " << p.z() << "} -init_dpos {" << v.x() << " " << v.y() << " " << v.z()
+         << "}\n";
+  }
+  text << "simulator -finish " << t1 << "\n";
+  return text.str();
+}
+
+// The collision checks follow the impacts.  An impact at t changes nothing
+// before t, so it makes the monitor check again only the window holding t
+// (not every window since the bodies' last samples, which for ballistic
+// balls lie seconds back): windows = 1024 + impacts exactly.  The walls'
+// twelve mutual overlaps are never candidates (statics have their own
+// tree), and a ball is a wall's candidate only in windows around a bounce,
+// so there are fewer candidate pairs than windows.  Energy is kept to
+// round-off (restitution 1, no friction).
+TEST(Collision, ChecksInABoxOfBallsGrowWithImpactsNotWithWindowsTimesWalls) {
+  const int n = 8;
+  const SceneRun run = SimulateOk(BallsInABox(n, 10.0));
+  const auto& c = run.collisions->counters();
+  EXPECT_GT(c.impacts, 3 * n);  // every ball meets walls about every 5 s
+  EXPECT_EQ(c.invalidated_impacts, 0);
+  EXPECT_EQ(c.windows, 1024 + c.impacts);
+  EXPECT_LT(c.broad_phase_pairs, c.windows);
+  EXPECT_LE(c.narrow_phase_queries, 8 * c.broad_phase_pairs);  // at most 8 rounds per search
+  double e0 = 0.0, e1 = 0.0;
+  for (int i = 0; i < n; ++i) {
+    e0 += 0.5 * Velocity(run, "b" + std::to_string(i), 0.0).squaredNorm();
+    e1 += 0.5 * Velocity(run, "b" + std::to_string(i), 10.0).squaredNorm();
+  }
+  EXPECT_NEAR(e1, e0, 1e-12 * e0 * static_cast<double>(c.impacts));
+}
+
 // ---- resting contact and stacking (issue 14) ---------------------------------------
 
 std::vector<collide::Piece> PiecesOf(const physics::BodyModel& m) {
