@@ -856,6 +856,17 @@ int CollisionMonitor::SlowEvents(int body) const {
   return count;
 }
 
+std::optional<Eigen::Vector3d> CollisionMonitor::LastSpin(int body) const {
+  for (auto it = impacts_.rbegin(); it != impacts_.rend(); ++it) {
+    if (!Involves(*it, body)) continue;
+    if (!it->resting) return std::nullopt;
+    for (size_t i = 0; i < it->bodies.size() && i < it->spin.size(); ++i)
+      if (it->bodies[i] == body) return it->spin[i];
+    return std::nullopt;
+  }
+  return std::nullopt;
+}
+
 void CollisionMonitor::Respond(const Impact& impact) {
   const double t = impact.t;
   const int ids[2] = {impact.a, impact.b};
@@ -1070,12 +1081,28 @@ void CollisionMonitor::RespondResting(const Impact& impact) {
   for (int body : members)
     if (body != impact.a && body != impact.b) recorded.bodies.push_back(body);
   for (const auto& c : contacts) recorded.impulse += c.normal_impulse;
-  // At rest: moving no faster than the hop, and not turning faster.
+  for (int body : recorded.bodies)
+    recorded.spin.push_back(index.count(body) ? states[static_cast<size_t>(index[body])].w
+                                              : Eigen::Vector3d::Zero());
+  // At rest: moving no faster than the hop, and not turning faster; and its
+  // spin steady — held to round-off, shrinking, or changed since its last
+  // event by less than `drift`.  A spin that grows by δ at each event turns
+  // the body's points by about δ Δ K²/2 more over the K = kSleepEvents
+  // events before sleep; kept below the landing gap (the solver's position
+  // tolerance), that is the most that sleep may stop.  A cube balanced on
+  // an edge with its centre a little off it gains α r Δ per event, far
+  // above that, and tips; a body at rest varies by the solve's round-off.
+  const double drift = 2.0 * separation_ / (kSleepEvents * kSleepEvents * hop);
   bool all_asleep = !members.empty();
   for (int body : members) {
     const collide::BodyState& st = states[static_cast<size_t>(index[body])];
-    const double limit = acc[body].norm() * hop + 1e-6 * bodies_[body].radius / hop;
-    const bool slow = st.v.norm() <= limit && st.w.norm() * bodies_[body].radius <= limit;
+    const double r = bodies_[body].radius;
+    const double limit = acc[body].norm() * hop + 1e-6 * r / hop;
+    const auto before = LastSpin(body);
+    const bool steady =
+        r * st.w.norm() <= drift ||
+        (before && (r * (st.w - *before).norm() <= drift || st.w.norm() <= before->norm()));
+    const bool slow = st.v.norm() <= limit && st.w.norm() * r <= limit && steady;
     if (slow) recorded.slow.push_back(body);
     if (!slow || SlowEvents(body) + 1 < kSleepEvents) all_asleep = false;
   }

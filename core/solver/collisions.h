@@ -72,7 +72,10 @@ struct Impact {
   // resting island); an edit or truncation of any of them voids the event.
   std::vector<int> bodies;
   std::vector<int> slow;  // bodies of the island found at rest at this event
-  bool resting = false;   // a simultaneous solve of slow contacts, not an impact
+  // Resting events: the world angular velocity of each of `bodies` after the
+  // solve (a spin that grows from one event to the next is not at rest).
+  std::vector<Eigen::Vector3d> spin;
+  bool resting = false;  // a simultaneous solve of slow contacts, not an impact
 };
 
 class CollisionMonitor {
@@ -140,6 +143,8 @@ class CollisionMonitor {
   void Wake(int body, double t);
   void Sleep(int body, double t);
   int SlowEvents(int body) const;
+  // The body's spin after its latest event, when that was a resting solve.
+  std::optional<Eigen::Vector3d> LastSpin(int body) const;
   static bool Involves(const Impact& impact, int body);
   std::vector<int> RestingAxes(int body, const Eigen::Vector3d& n_into, bool partner_movable,
                                double t, Eigen::Vector3d& v);
