@@ -747,6 +747,21 @@ Eigen::Vector3d CollisionMonitor::Acceleration(int body, double t) const {
   return acc;
 }
 
+Eigen::Vector3d CollisionMonitor::PointAcceleration(int body, double t,
+                                                    const Eigen::Vector3d& point) const {
+  const physics::BodyModel& m = sys_.bodies[body];
+  if (m.first_var < 0) return Eigen::Vector3d::Zero();
+  const collide::Pose pose = PoseAt(body, t);
+  Eigen::Vector3d w_body, dw_body;
+  for (int k = 0; k < 3; ++k) {
+    w_body[k] = sim_.Value(m.first_var + physics::kW1 + k, t, Side::kLeft);
+    dw_body[k] = sim_.Rate(m.first_var + physics::kW1 + k, t, Side::kLeft);
+  }
+  // d(R ω_b)/dt = R dω_b/dt (the ω × ω term vanishes).
+  const Eigen::Vector3d w = pose.R * w_body, alpha = pose.R * dw_body, r = point - pose.p;
+  return Acceleration(body, t) + alpha.cross(r) + w.cross(w.cross(r));
+}
+
 bool CollisionMonitor::Asleep(int body, double t) const {
   const physics::BodyModel& m = sys_.bodies[body];
   return m.first_var >= 0 && sim_.Held(m.first_var + physics::kQw, t);
@@ -872,7 +887,15 @@ void CollisionMonitor::Respond(const Impact& impact) {
   const int ids[2] = {impact.a, impact.b};
   const double margin = ContactMargin(impact.a, impact.b);
   const PairContact pc = ContactsAt(impact.a, impact.b, t, margin);
-  const Eigen::Vector3d acc_rel = Acceleration(impact.b, t) - Acceleration(impact.a, t);
+  // Relative acceleration where they touch: a body tipping about an edge
+  // presses with its angular acceleration (α × r), which its centre's
+  // acceleration does not show.
+  Eigen::Vector3d acc_rel = Acceleration(impact.b, t) - Acceleration(impact.a, t);
+  for (const auto& p : pc.points) {
+    const Eigen::Vector3d at =
+        PointAcceleration(impact.b, t, p.point) - PointAcceleration(impact.a, t, p.point);
+    if (at.norm() > acc_rel.norm()) acc_rel = at;
+  }
   const double radius = std::min(bodies_[impact.a].radius, bodies_[impact.b].radius);
   const double hop = HopPeriod(acc_rel.norm(), radius);
   // Slow: what the hop itself reaches, and never less than a touch whose
@@ -899,8 +922,11 @@ void CollisionMonitor::Respond(const Impact& impact) {
     RespondResting(impact);
     return;
   }
+  responding_ = true;  // a wake changes nothing before t
+  respond_time_ = t;
   for (int b : ids)
     if (Asleep(b, t)) Wake(b, t);
+  responding_ = false;
   collide::BodyState state[2];
   bool movable[2];
   for (int s = 0; s < 2; ++s) {
@@ -991,6 +1017,14 @@ void CollisionMonitor::RespondResting(const Impact& impact) {
     states.push_back(StateAt(body, t, movable));
     if (movable) members.push_back(body);
   };
+  // Sleeping bodies that the event touches wake (the event's own pair, and
+  // any the island reaches within the landing gap): a domino that leans on a
+  // sleeping one pushes it over instead of meeting a wall.  Waking changes
+  // nothing before t.
+  responding_ = true;
+  respond_time_ = t;
+  for (int body : {impact.a, impact.b})
+    if (Asleep(body, t)) Wake(body, t);
   add(impact.a);
   add(impact.b);
   std::vector<PairContact> pairs;
@@ -1009,6 +1043,7 @@ void CollisionMonitor::RespondResting(const Impact& impact) {
       PairContact pc = ContactsAt(key.first, key.second, t, margin);
       if (pc.points.empty()) continue;
       seen.insert(key);
+      if (pc.min_gap <= separation_ && !index.count(other) && Asleep(other, t)) Wake(other, t);
       add(other);
       pairs.push_back(std::move(pc));
     }

@@ -132,6 +132,8 @@ class CollisionMonitor {
   Eigen::Vector3d PointVelocity(int body, double t, const Eigen::Vector3d& point,
                                 Side side = Side::kRight) const;
   Eigen::Vector3d Acceleration(int body, double t) const;
+  // Acceleration of the body's material point at `point` (world) at t.
+  Eigen::Vector3d PointAcceleration(int body, double t, const Eigen::Vector3d& point) const;
   bool Asleep(int body, double t) const;
   bool Movable(int body, double t) const;
   collide::BodyState StateAt(int body, double t, bool movable) const;
