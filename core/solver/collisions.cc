@@ -444,12 +444,21 @@ bool CollisionMonitor::Prescribed(int b, double t) const {
 bool CollisionMonitor::CheckEpoch() {
   const double e0 = EpochStart(epoch_), e1 = EpochStart(epoch_ + 1);
   ++counters_.windows;
-  collide::BroadPhase& broad = broad_;
-  broad.Clear();  // the static bodies' boxes stay (constructor)
+  // Boxes bounding each moving body over the window.  A check of the same
+  // window again (after an impact in it) recomputes only the boxes of the
+  // bodies that changed since (a truncation bumps version_) and only their
+  // pairs: the rest are the same boxes, so the same pairs.
+  const bool again = boxes_epoch_ == epoch_;
+  boxes_epoch_ = epoch_;
+  box_version_.resize(bodies_.size(), -1);
+  box_lo_.resize(bodies_.size());
+  box_hi_.resize(bodies_.size());
+  std::vector<int> changed;
   for (size_t b = 0; b < bodies_.size(); ++b) {
     const BodyInfo& info = bodies_[b];
     const physics::BodyModel& m = sys_.bodies[b];
     if (!info.collidable || m.first_var < 0) continue;
+    if (again && box_version_[b] == version_[b]) continue;
     Eigen::Vector3d lo, hi;
     for (int a = 0; a < 3; ++a) {
       const int var = m.first_var + physics::kX + a;
@@ -459,10 +468,36 @@ bool CollisionMonitor::CheckEpoch() {
       });
     }
     const Eigen::Vector3d r = Eigen::Vector3d::Constant(info.radius + separation_);
-    broad.Add(static_cast<int>(b), lo - r, hi + r);
+    box_lo_[b] = lo - r;
+    box_hi_[b] = hi + r;
+    box_version_[b] = version_[b];
+    changed.push_back(static_cast<int>(b));
   }
-  const auto pairs = broad.Pairs();
-  counters_.broad_phase_pairs += static_cast<long>(pairs.size());
+  // The changed bodies' pairs: among themselves and with the statics (the
+  // broad phase), and with the unchanged moving bodies (their boxes, one by one).
+  broad_.Clear();  // the static bodies' boxes stay (constructor)
+  for (int b : changed) broad_.Add(b, box_lo_[b], box_hi_[b]);
+  std::vector<std::pair<int, int>> found = broad_.Pairs();
+  if (again) {
+    std::vector<char> is_changed(bodies_.size(), 0);
+    for (int b : changed) is_changed[static_cast<size_t>(b)] = 1;
+    std::erase_if(window_pairs_,
+                  [&](const auto& p) { return is_changed[p.first] || is_changed[p.second]; });
+    for (int c : changed)
+      for (size_t o = 0; o < bodies_.size(); ++o) {
+        if (is_changed[o] || !bodies_[o].collidable || sys_.bodies[o].first_var < 0) continue;
+        if ((box_lo_[c].array() <= box_hi_[o].array()).all() &&
+            (box_lo_[o].array() <= box_hi_[c].array()).all())
+          found.emplace_back(std::min(c, static_cast<int>(o)), std::max(c, static_cast<int>(o)));
+      }
+  } else {
+    window_pairs_.clear();
+  }
+  counters_.broad_phase_pairs += static_cast<long>(found.size());
+  window_pairs_.insert(window_pairs_.end(), found.begin(), found.end());
+  std::sort(window_pairs_.begin(), window_pairs_.end());
+  window_pairs_.erase(std::unique(window_pairs_.begin(), window_pairs_.end()), window_pairs_.end());
+  const auto pairs = window_pairs_;
   std::optional<Impact> best;
   for (auto [a, b] : pairs) {
     if (!Tested(a, b)) continue;

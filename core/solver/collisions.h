@@ -172,6 +172,12 @@ class CollisionMonitor {
   long pending_ = 0;   // collidable bodies not yet computed past its end
   std::vector<BodyInfo> bodies_;
   collide::BroadPhase broad_;  // the static bodies' boxes, and each window's moving ones
+  // The current window's boxes (per body, with the version they were
+  // computed at) and candidate pairs, for checking it again after an impact.
+  long boxes_epoch_ = -1;
+  std::vector<long> box_version_;
+  std::vector<Eigen::Vector3d> box_lo_, box_hi_;
+  std::vector<std::pair<int, int>> window_pairs_;
   std::vector<std::vector<int>> bodies_of_component_;
   std::set<std::pair<int, int>> excluded_;  // directly linked parts of one artbody
   std::vector<Impact> impacts_;             // sorted by time
