@@ -123,10 +123,16 @@ std::vector<ContactPoint> Manifold(const Piece& a, const Pose& pa, const Piece& 
 // Sweep and prune over axis-aligned boxes (the solver passes boxes that
 // bound a body's bounding sphere over a time interval).  Pairs are reported
 // once, as (smaller id, larger id), sorted.  Cost ~ N log N + overlaps.
+//
+// Static boxes (AddStatic) stay across Clear and live in their own tree: a
+// moving box is tested against the statics it overlaps (log S + hits), and
+// two statics never pair, so a closed box of walls adds nothing per window.
 class BroadPhase {
  public:
+  // Drops the moving boxes (static ones stay).
   void Clear();
   void Add(int id, const Eigen::Vector3d& lo, const Eigen::Vector3d& hi);
+  void AddStatic(int id, const Eigen::Vector3d& lo, const Eigen::Vector3d& hi);
   std::vector<std::pair<int, int>> Pairs() const;
 
  private:
@@ -134,7 +140,18 @@ class BroadPhase {
     int id;
     Eigen::Vector3d lo, hi;
   };
+  // Node of the static tree: a leaf holds statics_[first], an inner node
+  // its two children (left = this + 1, right = `right`).
+  struct Node {
+    Eigen::Vector3d lo = Eigen::Vector3d::Zero(), hi = Eigen::Vector3d::Zero();
+    int first = -1;  // leaf: index into statics_; inner: -1
+    int right = -1;
+  };
+  int Build(int begin, int end) const;
   std::vector<Box> boxes_;
+  // Built on the first Pairs after AddStatic (which reorders statics_).
+  mutable std::vector<Box> statics_;
+  mutable std::vector<Node> tree_;
 };
 
 // Motion of a body over an interval: its pose at any time in the interval,

@@ -265,6 +265,12 @@ CollisionMonitor::CollisionMonitor(Simulation& sim, double separation)
     }
     UpdateEnd(static_cast<int>(b));
   }
+  // The static bodies' boxes, widened by the landing gap, in the broad
+  // phase's tree for the whole run.
+  for (size_t b = 0; b < bodies_.size(); ++b)
+    if (bodies_[b].collidable && sys_.bodies[b].first_var < 0)
+      broad_.AddStatic(static_cast<int>(b), bodies_[b].lo - Eigen::Vector3d::Constant(separation_),
+                       bodies_[b].hi + Eigen::Vector3d::Constant(separation_));
   // Bodies land this close before an impact.  Positions are only as exact as
   // the solver's tolerance, and after an impact the components re-step to it,
   // so the gap must exceed that error or the re-stepped bodies would overlap.
@@ -438,17 +444,22 @@ bool CollisionMonitor::Prescribed(int b, double t) const {
 bool CollisionMonitor::CheckEpoch() {
   const double e0 = EpochStart(epoch_), e1 = EpochStart(epoch_ + 1);
   ++counters_.windows;
-  collide::BroadPhase broad;
+  // Boxes bounding each moving body over the window.  A check of the same
+  // window again (after an impact in it) recomputes only the boxes of the
+  // bodies that changed since (a truncation bumps version_) and only their
+  // pairs: the rest are the same boxes, so the same pairs.
+  const bool again = boxes_epoch_ == epoch_;
+  boxes_epoch_ = epoch_;
+  box_version_.resize(bodies_.size(), -1);
+  box_lo_.resize(bodies_.size());
+  box_hi_.resize(bodies_.size());
+  std::vector<int> changed;
   for (size_t b = 0; b < bodies_.size(); ++b) {
     const BodyInfo& info = bodies_[b];
-    if (!info.collidable) continue;
-    Eigen::Vector3d lo, hi;
     const physics::BodyModel& m = sys_.bodies[b];
-    if (m.first_var < 0) {
-      const Eigen::Vector3d r = Eigen::Vector3d::Constant(separation_);
-      broad.Add(static_cast<int>(b), info.lo - r, info.hi + r);
-      continue;
-    }
+    if (!info.collidable || m.first_var < 0) continue;
+    if (again && box_version_[b] == version_[b]) continue;
+    Eigen::Vector3d lo, hi;
     for (int a = 0; a < 3; ++a) {
       const int var = m.first_var + physics::kX + a;
       lo[a] = hi[a] = sim_.Value(var, e0);
@@ -457,10 +468,36 @@ bool CollisionMonitor::CheckEpoch() {
       });
     }
     const Eigen::Vector3d r = Eigen::Vector3d::Constant(info.radius + separation_);
-    broad.Add(static_cast<int>(b), lo - r, hi + r);
+    box_lo_[b] = lo - r;
+    box_hi_[b] = hi + r;
+    box_version_[b] = version_[b];
+    changed.push_back(static_cast<int>(b));
   }
-  const auto pairs = broad.Pairs();
-  counters_.broad_phase_pairs += static_cast<long>(pairs.size());
+  // The changed bodies' pairs: among themselves and with the statics (the
+  // broad phase), and with the unchanged moving bodies (their boxes, one by one).
+  broad_.Clear();  // the static bodies' boxes stay (constructor)
+  for (int b : changed) broad_.Add(b, box_lo_[b], box_hi_[b]);
+  std::vector<std::pair<int, int>> found = broad_.Pairs();
+  if (again) {
+    std::vector<char> is_changed(bodies_.size(), 0);
+    for (int b : changed) is_changed[static_cast<size_t>(b)] = 1;
+    std::erase_if(window_pairs_,
+                  [&](const auto& p) { return is_changed[p.first] || is_changed[p.second]; });
+    for (int c : changed)
+      for (size_t o = 0; o < bodies_.size(); ++o) {
+        if (is_changed[o] || !bodies_[o].collidable || sys_.bodies[o].first_var < 0) continue;
+        if ((box_lo_[c].array() <= box_hi_[o].array()).all() &&
+            (box_lo_[o].array() <= box_hi_[c].array()).all())
+          found.emplace_back(std::min(c, static_cast<int>(o)), std::max(c, static_cast<int>(o)));
+      }
+  } else {
+    window_pairs_.clear();
+  }
+  counters_.broad_phase_pairs += static_cast<long>(found.size());
+  window_pairs_.insert(window_pairs_.end(), found.begin(), found.end());
+  std::sort(window_pairs_.begin(), window_pairs_.end());
+  window_pairs_.erase(std::unique(window_pairs_.begin(), window_pairs_.end()), window_pairs_.end());
+  const auto pairs = window_pairs_;
   std::optional<Impact> best;
   for (auto [a, b] : pairs) {
     if (!Tested(a, b)) continue;
@@ -745,6 +782,21 @@ Eigen::Vector3d CollisionMonitor::Acceleration(int body, double t) const {
   return acc;
 }
 
+Eigen::Vector3d CollisionMonitor::PointAcceleration(int body, double t,
+                                                    const Eigen::Vector3d& point) const {
+  const physics::BodyModel& m = sys_.bodies[body];
+  if (m.first_var < 0) return Eigen::Vector3d::Zero();
+  const collide::Pose pose = PoseAt(body, t);
+  Eigen::Vector3d w_body, dw_body;
+  for (int k = 0; k < 3; ++k) {
+    w_body[k] = sim_.Value(m.first_var + physics::kW1 + k, t, Side::kLeft);
+    dw_body[k] = sim_.Rate(m.first_var + physics::kW1 + k, t, Side::kLeft);
+  }
+  // d(R ω_b)/dt = R dω_b/dt (the ω × ω term vanishes).
+  const Eigen::Vector3d w = pose.R * w_body, alpha = pose.R * dw_body, r = point - pose.p;
+  return Acceleration(body, t) + alpha.cross(r) + w.cross(w.cross(r));
+}
+
 bool CollisionMonitor::Asleep(int body, double t) const {
   const physics::BodyModel& m = sys_.bodies[body];
   return m.first_var >= 0 && sim_.Held(m.first_var + physics::kQw, t);
@@ -854,12 +906,31 @@ int CollisionMonitor::SlowEvents(int body) const {
   return count;
 }
 
+std::optional<Eigen::Vector3d> CollisionMonitor::LastSpin(int body) const {
+  for (auto it = impacts_.rbegin(); it != impacts_.rend(); ++it) {
+    if (!Involves(*it, body)) continue;
+    if (!it->resting) return std::nullopt;
+    for (size_t i = 0; i < it->bodies.size() && i < it->spin.size(); ++i)
+      if (it->bodies[i] == body) return it->spin[i];
+    return std::nullopt;
+  }
+  return std::nullopt;
+}
+
 void CollisionMonitor::Respond(const Impact& impact) {
   const double t = impact.t;
   const int ids[2] = {impact.a, impact.b};
   const double margin = ContactMargin(impact.a, impact.b);
   const PairContact pc = ContactsAt(impact.a, impact.b, t, margin);
-  const Eigen::Vector3d acc_rel = Acceleration(impact.b, t) - Acceleration(impact.a, t);
+  // Relative acceleration where they touch: a body tipping about an edge
+  // presses with its angular acceleration (α × r), which its centre's
+  // acceleration does not show.
+  Eigen::Vector3d acc_rel = Acceleration(impact.b, t) - Acceleration(impact.a, t);
+  for (const auto& p : pc.points) {
+    const Eigen::Vector3d at =
+        PointAcceleration(impact.b, t, p.point) - PointAcceleration(impact.a, t, p.point);
+    if (at.norm() > acc_rel.norm()) acc_rel = at;
+  }
   const double radius = std::min(bodies_[impact.a].radius, bodies_[impact.b].radius);
   const double hop = HopPeriod(acc_rel.norm(), radius);
   // Slow: what the hop itself reaches, and never less than a touch whose
@@ -886,8 +957,11 @@ void CollisionMonitor::Respond(const Impact& impact) {
     RespondResting(impact);
     return;
   }
+  responding_ = true;  // a wake changes nothing before t
+  respond_time_ = t;
   for (int b : ids)
     if (Asleep(b, t)) Wake(b, t);
+  responding_ = false;
   collide::BodyState state[2];
   bool movable[2];
   for (int s = 0; s < 2; ++s) {
@@ -978,6 +1052,14 @@ void CollisionMonitor::RespondResting(const Impact& impact) {
     states.push_back(StateAt(body, t, movable));
     if (movable) members.push_back(body);
   };
+  // Sleeping bodies that the event touches wake (the event's own pair, and
+  // any the island reaches within the landing gap): a domino that leans on a
+  // sleeping one pushes it over instead of meeting a wall.  Waking changes
+  // nothing before t.
+  responding_ = true;
+  respond_time_ = t;
+  for (int body : {impact.a, impact.b})
+    if (Asleep(body, t)) Wake(body, t);
   add(impact.a);
   add(impact.b);
   std::vector<PairContact> pairs;
@@ -996,6 +1078,7 @@ void CollisionMonitor::RespondResting(const Impact& impact) {
       PairContact pc = ContactsAt(key.first, key.second, t, margin);
       if (pc.points.empty()) continue;
       seen.insert(key);
+      if (pc.min_gap <= separation_ && !index.count(other) && Asleep(other, t)) Wake(other, t);
       add(other);
       pairs.push_back(std::move(pc));
     }
@@ -1068,12 +1151,28 @@ void CollisionMonitor::RespondResting(const Impact& impact) {
   for (int body : members)
     if (body != impact.a && body != impact.b) recorded.bodies.push_back(body);
   for (const auto& c : contacts) recorded.impulse += c.normal_impulse;
-  // At rest: moving no faster than the hop, and not turning faster.
+  for (int body : recorded.bodies)
+    recorded.spin.push_back(index.count(body) ? states[static_cast<size_t>(index[body])].w
+                                              : Eigen::Vector3d::Zero());
+  // At rest: moving no faster than the hop, and not turning faster; and its
+  // spin steady — held to round-off, shrinking, or changed since its last
+  // event by less than `drift`.  A spin that grows by δ at each event turns
+  // the body's points by about δ Δ K²/2 more over the K = kSleepEvents
+  // events before sleep; kept below the landing gap (the solver's position
+  // tolerance), that is the most that sleep may stop.  A cube balanced on
+  // an edge with its centre a little off it gains α r Δ per event, far
+  // above that, and tips; a body at rest varies by the solve's round-off.
+  const double drift = 2.0 * separation_ / (kSleepEvents * kSleepEvents * hop);
   bool all_asleep = !members.empty();
   for (int body : members) {
     const collide::BodyState& st = states[static_cast<size_t>(index[body])];
-    const double limit = acc[body].norm() * hop + 1e-6 * bodies_[body].radius / hop;
-    const bool slow = st.v.norm() <= limit && st.w.norm() * bodies_[body].radius <= limit;
+    const double r = bodies_[body].radius;
+    const double limit = acc[body].norm() * hop + 1e-6 * r / hop;
+    const auto before = LastSpin(body);
+    const bool steady =
+        r * st.w.norm() <= drift ||
+        (before && (r * (st.w - *before).norm() <= drift || st.w.norm() <= before->norm()));
+    const bool slow = st.v.norm() <= limit && st.w.norm() * r <= limit && steady;
     if (slow) recorded.slow.push_back(body);
     if (!slow || SlowEvents(body) + 1 < kSleepEvents) all_asleep = false;
   }
@@ -1143,9 +1242,15 @@ void CollisionMonitor::AfterTruncate() {
     truncated_.clear();
     for (auto [b, kept] : work) {
       UpdateEnd(b);
-      earliest = std::min(earliest, kept);
       // Impacts after `kept` involving b were computed from data that is gone.
       const double limit = responding_ ? std::max(kept, respond_time_) : kept;
+      // The windows to check again start at the first change.  A response's
+      // jump at t changes nothing before t: the components re-step from
+      // their last sample up to t through the same motion (a ballistic ball
+      // may have its last sample seconds back), and checking every window
+      // since that sample again after each impact made the checks grow with
+      // impacts × span × pairs.
+      earliest = std::min(earliest, limit);
       // impacts_ is sorted by time: only its tail after `limit` can go.
       auto after = std::upper_bound(impacts_.begin(), impacts_.end(), limit,
                                     [](double t, const Impact& x) { return t < x.t; });

@@ -6,7 +6,8 @@
 // checked over an interval both bodies are known over (seed 5.2.3):
 //
 //   epoch k  [E0 ──────────────── E1]
-//     broad phase   boxes bounding each body's sphere over the window → sweep and prune
+//     broad phase   boxes bounding each body's sphere over the window → sweep and prune;
+//                   static bodies' exact boxes in a tree of their own (never paired)
 //     narrow phase  per candidate pair and piece pair: TimeOfImpact from the pair's
 //                   start (E0, or the last impact of either body inside the window)
 //     response      the earliest impact (ties: lowest pair) gets an impulse; the
@@ -71,7 +72,10 @@ struct Impact {
   // resting island); an edit or truncation of any of them voids the event.
   std::vector<int> bodies;
   std::vector<int> slow;  // bodies of the island found at rest at this event
-  bool resting = false;   // a simultaneous solve of slow contacts, not an impact
+  // Resting events: the world angular velocity of each of `bodies` after the
+  // solve (a spin that grows from one event to the next is not at rest).
+  std::vector<Eigen::Vector3d> spin;
+  bool resting = false;  // a simultaneous solve of slow contacts, not an impact
 };
 
 class CollisionMonitor {
@@ -128,6 +132,8 @@ class CollisionMonitor {
   Eigen::Vector3d PointVelocity(int body, double t, const Eigen::Vector3d& point,
                                 Side side = Side::kRight) const;
   Eigen::Vector3d Acceleration(int body, double t) const;
+  // Acceleration of the body's material point at `point` (world) at t.
+  Eigen::Vector3d PointAcceleration(int body, double t, const Eigen::Vector3d& point) const;
   bool Asleep(int body, double t) const;
   bool Movable(int body, double t) const;
   collide::BodyState StateAt(int body, double t, bool movable) const;
@@ -139,6 +145,8 @@ class CollisionMonitor {
   void Wake(int body, double t);
   void Sleep(int body, double t);
   int SlowEvents(int body) const;
+  // The body's spin after its latest event, when that was a resting solve.
+  std::optional<Eigen::Vector3d> LastSpin(int body) const;
   static bool Involves(const Impact& impact, int body);
   std::vector<int> RestingAxes(int body, const Eigen::Vector3d& n_into, bool partner_movable,
                                double t, Eigen::Vector3d& v);
@@ -163,6 +171,13 @@ class CollisionMonitor {
   bool idle_ = false;  // no pair can collide: no windows are checked
   long pending_ = 0;   // collidable bodies not yet computed past its end
   std::vector<BodyInfo> bodies_;
+  collide::BroadPhase broad_;  // the static bodies' boxes, and each window's moving ones
+  // The current window's boxes (per body, with the version they were
+  // computed at) and candidate pairs, for checking it again after an impact.
+  long boxes_epoch_ = -1;
+  std::vector<long> box_version_;
+  std::vector<Eigen::Vector3d> box_lo_, box_hi_;
+  std::vector<std::pair<int, int>> window_pairs_;
   std::vector<std::vector<int>> bodies_of_component_;
   std::set<std::pair<int, int>> excluded_;  // directly linked parts of one artbody
   std::vector<Impact> impacts_;             // sorted by time

@@ -71,5 +71,37 @@ TEST(BroadPhase, TouchingBoxesPairOnceAsSmallerIdFirstAndClearEmpties) {
   EXPECT_TRUE(bp.Pairs().empty());
 }
 
+// Statics in their own tree: moving–moving and moving–static pairs exactly
+// as brute force finds them, static–static pairs never; they stay across Clear.
+TEST(BroadPhase, StaticBoxesPairOnlyWithMovingOnesAndStayAcrossClear) {
+  std::mt19937_64 rng(3);
+  std::uniform_real_distribution<double> position(0.0, 10.0), size(0.0, 1.2), big(0.0, 6.0);
+  std::vector<Aabb> moving, statics;
+  BroadPhase bp;
+  for (int i = 0; i < 40; ++i) {
+    const Eigen::Vector3d lo(position(rng), position(rng), position(rng));
+    statics.push_back({1000 + i, lo, lo + Eigen::Vector3d(big(rng), big(rng), big(rng))});
+    bp.AddStatic(statics.back().id, statics.back().lo, statics.back().hi);
+  }
+  for (int round = 0; round < 2; ++round) {
+    bp.Clear();
+    moving.clear();
+    for (int i = 0; i < 300; ++i) {
+      const Eigen::Vector3d lo(position(rng), position(rng), position(rng));
+      moving.push_back({i, lo, lo + Eigen::Vector3d(size(rng), size(rng), size(rng))});
+      bp.Add(i, moving.back().lo, moving.back().hi);
+    }
+    std::vector<Aabb> all = moving;
+    all.insert(all.end(), statics.begin(), statics.end());
+    auto expected = BruteForce(all);
+    std::erase_if(expected, [](const auto& p) { return p.first >= 1000; });  // static–static
+    const auto pairs = bp.Pairs();
+    EXPECT_EQ(pairs, expected) << "round " << round;
+    EXPECT_TRUE(
+        std::any_of(pairs.begin(), pairs.end(), [](const auto& p) { return p.second >= 1000; }))
+        << "round " << round;
+  }
+}
+
 }  // namespace
 }  // namespace asgard::collide
