@@ -158,11 +158,11 @@ TEST(BallisticSteps, FreeBallsCostOneStepEachAndFollowTheirParabolas) {
     for (double t : {0.0, 0.37, 13.0, 61.5, 100.0}) {
       const double y = vy * t - 0.5 * 9.81 * t * t;
       // Rounding only: the terms reach 5e4, an ulp of which is 7e-12, and the
-      // interpolation weights add a few more.
-      EXPECT_NEAR(run.simulation->Value(v + physics::kX, t), 3 * (i % 20) + vx * t, 1e-9);
-      EXPECT_NEAR(run.simulation->Value(v + physics::kY, t), y, 1e-9);
+      // interpolation weights add a few more (1e-10 is 14 such ulps).
+      EXPECT_NEAR(run.simulation->Value(v + physics::kX, t), 3 * (i % 20) + vx * t, 1e-10);
+      EXPECT_NEAR(run.simulation->Value(v + physics::kY, t), y, 1e-10);
       EXPECT_NEAR(run.simulation->Value(v + physics::kZ, t),
-                  3 * (i / 20) + 0.5 * t + 0.5 * az * t * t, 1e-9);
+                  3 * (i / 20) + 0.5 * t + 0.5 * az * t * t, 1e-10);
       EXPECT_NEAR(run.simulation->Value(v + physics::kDy, t), vy - 9.81 * t, 1e-12);
     }
   }
