@@ -497,9 +497,8 @@ bool CollisionMonitor::CheckEpoch() {
   window_pairs_.insert(window_pairs_.end(), found.begin(), found.end());
   std::sort(window_pairs_.begin(), window_pairs_.end());
   window_pairs_.erase(std::unique(window_pairs_.begin(), window_pairs_.end()), window_pairs_.end());
-  const auto pairs = window_pairs_;
   std::optional<Impact> best;
-  for (auto [a, b] : pairs) {
+  for (auto [a, b] : window_pairs_) {
     if (!Tested(a, b)) continue;
     double start = e0;
     // Only impacts inside this window count: after a rollback, later
@@ -919,6 +918,14 @@ std::optional<Eigen::Vector3d> CollisionMonitor::LastSpin(int body) const {
 
 void CollisionMonitor::Respond(const Impact& impact) {
   const double t = impact.t;
+  // Every change a response makes (wakes, jumps, holds, sleep, here and in
+  // RespondResting) is at t and changes nothing before it (AfterTruncate).
+  responding_ = true;
+  respond_time_ = t;
+  struct Done {
+    bool& flag;
+    ~Done() { flag = false; }
+  } done{responding_};
   const int ids[2] = {impact.a, impact.b};
   const double margin = ContactMargin(impact.a, impact.b);
   const PairContact pc = ContactsAt(impact.a, impact.b, t, margin);
@@ -957,11 +964,8 @@ void CollisionMonitor::Respond(const Impact& impact) {
     RespondResting(impact);
     return;
   }
-  responding_ = true;  // a wake changes nothing before t
-  respond_time_ = t;
   for (int b : ids)
     if (Asleep(b, t)) Wake(b, t);
-  responding_ = false;
   collide::BodyState state[2];
   bool movable[2];
   for (int s = 0; s < 2; ++s) {
@@ -1009,8 +1013,6 @@ void CollisionMonitor::Respond(const Impact& impact) {
   ++counters_.impacts;
   auto pos = std::upper_bound(impacts_.begin(), impacts_.end(), recorded, ImpactOrder);
   impacts_.insert(pos, recorded);
-  responding_ = true;
-  respond_time_ = t;
   for (int s = 0; s < 2; ++s) {
     if (!movable[s]) continue;
     const physics::BodyModel& m = sys_.bodies[ids[s]];
@@ -1030,7 +1032,6 @@ void CollisionMonitor::Respond(const Impact& impact) {
       sim_.HoldAt(m.first_var + physics::kDx + a, t, 0.0);
     }
   }
-  responding_ = false;
 }
 
 // Slow contacts are solved together: every body in contact with the pair,
@@ -1054,10 +1055,7 @@ void CollisionMonitor::RespondResting(const Impact& impact) {
   };
   // Sleeping bodies that the event touches wake (the event's own pair, and
   // any the island reaches within the landing gap): a domino that leans on a
-  // sleeping one pushes it over instead of meeting a wall.  Waking changes
-  // nothing before t.
-  responding_ = true;
-  respond_time_ = t;
+  // sleeping one pushes it over instead of meeting a wall.
   for (int body : {impact.a, impact.b})
     if (Asleep(body, t)) Wake(body, t);
   add(impact.a);
@@ -1181,8 +1179,6 @@ void CollisionMonitor::RespondResting(const Impact& impact) {
   counters_.contacts_solved += static_cast<long>(contacts.size());
   auto pos = std::upper_bound(impacts_.begin(), impacts_.end(), recorded, ImpactOrder);
   impacts_.insert(pos, recorded);
-  responding_ = true;
-  respond_time_ = t;
   for (int body : members) {
     const physics::BodyModel& m = sys_.bodies[body];
     if (auto it = shift.find(body); it != shift.end())
@@ -1195,7 +1191,6 @@ void CollisionMonitor::RespondResting(const Impact& impact) {
       WriteVelocities(body, t, states[static_cast<size_t>(index[body])]);
     }
   }
-  responding_ = false;
 }
 
 // Resting contact: against an immovable partner, an impact after which the
