@@ -638,11 +638,11 @@ void HttpSession::OnRequest() {
   if (req.method() != http::verb::get && req.method() != http::verb::head)
     return Respond(http::status::method_not_allowed, "text/plain", "only GET\n");
   bool ok = false;
-  if (path == "/editor.js") {
-    std::string js = ReadFile(o.web_root + "/editor.js", &ok);
+  if (path == "/editor.js" || path == "/document.js") {
+    std::string js = ReadFile(o.web_root + path, &ok);
     if (!ok)
       return Respond(http::status::not_found, "text/plain",
-                     "the editor bundle was not built (web/, needs node)\n");
+                     "the browser bundle was not built (web/, needs node)\n");
     return Respond(http::status::ok, "text/javascript; charset=utf-8", std::move(js));
   }
   if (path == "/editor.css") {
