@@ -127,11 +127,12 @@ struct Walk {
   std::string html;
 };
 
-// One animation in the document view: its picture drawn by its slave
-// (GET /frame) and the toolbar of seed 6.2.4 — play, pause, loop, the time
-// slider, recompute, handles, the editor.  The page's WebSocket to the
-// animation is one more view of it: a `scene` event (an edit's new motion,
-// from any editor) redraws the picture, so every rendition stays in step.
+// One animation in the document view: a rendition (WebGL from the pose
+// stream, or the picture its slave draws, GET /frame) and the toolbar of
+// seed 6.2.4 — play, pause, loop, the time slider, recompute, handles, the
+// editor, another rendition.  The page's WebSocket to the animation is one
+// more view of it: a `scene` event (an edit's new motion, from any editor)
+// reaches every rendition, and all renditions of it follow one clock.
 std::string RenditionHtml(size_t i, const Animation& a) {
   const std::string n = std::to_string(i);
   return "<figure class=\"rendition\" data-a=\"" + n + "\"><img alt=\"" + HtmlEscape(a.title) +
@@ -140,62 +141,16 @@ std::string RenditionHtml(size_t i, const Animation& a) {
          "Loop</label> <input type=\"range\" class=\"time\" min=\"0\" max=\"1000\" "
          "value=\"0\"> <span class=\"t\"></span> <button class=\"recompute\">Recompute</button> "
          "<label><input type=\"checkbox\" class=\"handles\">Handles</label> <a href=\"/edit?a=" +
-         n + "\" target=\"_blank\">Edit</a> <span class=\"status\"></span></figcaption></figure>\n";
+         n +
+         "\" target=\"_blank\">Edit</a> <button class=\"another\" title=\"Another rendition of "
+         "this animation, in step with this one\">Another view</button> <span "
+         "class=\"status\"></span></figcaption></figure>\n";
 }
 
-const char* const kDocumentScript = R"(<script>
-for (const f of document.querySelectorAll('figure.rendition')) {
-  const a = f.dataset.a, q = (c) => f.querySelector(c);
-  const img = q('img'), range = q('.time'), status = q('.status'), tl = q('.t');
-  let t0 = 0, t1 = 0, id = 0, timer = null, drawing = null, again = false;
-  const pending = new Map();
-  const time = () => t0 + (t1 - t0) * range.value / 1000;
-  async function draw() {
-    if (drawing) { again = true; return drawing; }
-    drawing = (async () => {
-      const r = await fetch(`/frame?a=${a}&t=${time()}&handles=${q('.handles').checked ? 1 : 0}`);
-      const [s0, s1] = (r.headers.get('X-Asgard-Interval') || '0 0').split(' ').map(Number);
-      if (s1 > s0) [t0, t1] = [s0, s1];
-      status.textContent = (r.headers.get('X-Asgard-Live') === '1' ? '' : '⚠ ') + (r.headers.get('X-Asgard-Status') || '');
-      tl.textContent = `t = ${time().toFixed(2)} s`;
-      if (r.ok) { const old = img.src; img.src = URL.createObjectURL(await r.blob()); if (old) URL.revokeObjectURL(old); }
-      f.dataset.drawn = String(Number(f.dataset.drawn || 0) + 1);
-    })();
-    await drawing; drawing = null;
-    if (again) { again = false; return draw(); }
-  }
-  const ws = new WebSocket(`ws://${location.host}/ws?a=${a}`);
-  const call = (method, params = {}) => new Promise((resolve) => {
-    const n = ++id; pending.set(n, resolve); ws.send(JSON.stringify({ id: n, method, params }));
-  });
-  ws.onmessage = (m) => {
-    const d = JSON.parse(m.data);
-    if (d.id && pending.has(d.id)) { pending.get(d.id)(d); pending.delete(d.id); }
-    else if (d.event === 'scene') draw();
-    else if (d.event === 'error') status.textContent = '⚠ ' + d.message;
-  };
-  range.oninput = draw;
-  q('.handles').onchange = draw;
-  q('.recompute').onclick = async () => {
-    status.textContent = 'recomputing…';
-    const r = await call('simulate');
-    if (r.error || !r.result.ok) status.textContent = '⚠ ' + (r.error ? r.error.message : r.result.error);
-    await draw();
-  };
-  const stop = () => { clearInterval(timer); timer = null; q('.play').textContent = 'Play'; };
-  q('.play').onclick = () => {
-    if (timer) return stop();
-    q('.play').textContent = 'Pause';
-    timer = setInterval(() => {
-      let v = Number(range.value) + 100 / Math.max(t1 - t0, 1e-9);  // 0.1 s a tick
-      if (v > 1000) { if (!q('.loop').checked) { range.value = 1000; draw(); return stop(); } v = 0; }
-      range.value = v; draw();
-    }, 100);
-  };
-  draw();
-}
-</script>
-)";
+// The page's script: web/src/document.js, bundled (WebGL renditions from
+// the animation's pose stream on one clock; the slave's picture as the
+// fallback).
+const char* const kDocumentScript = "<script type=\"module\" src=\"/document.js\"></script>\n";
 
 void Collect(std::vector<document::Node>& nodes, Walk& w, std::vector<size_t>& path) {
   for (size_t k = 0; k < nodes.size(); ++k) {

@@ -154,8 +154,11 @@ class Hub {
       job();
     }
   }
-  // Worker thread: make sure the slave runs with the current text.
-  bool Ensure(std::string* error);
+  // Worker thread: make sure the slave runs with the current text; false
+  // with the failed `load`'s answer.
+  bool Ensure(SlaveAnswer* failed);
+  // Worker thread: one request, restarting a dead slave once.
+  SlaveAnswer Ask(const std::string& method, const json& params);
   json Call(const std::string& method, const json& params);
   // Worker thread: simulate and fetch the motion; updates the last good scene.
   json Resimulate();
@@ -284,35 +287,40 @@ void Hub::Broadcast(json event) {
   });
 }
 
-bool Hub::Ensure(std::string* error) {
+bool Hub::Ensure(SlaveAnswer* failed) {
   if (slave_->running() && loaded_) return true;
   loaded_ = false;
-  const SlaveAnswer a = slave_->Call("load", {{"text", text_}});
+  SlaveAnswer a = slave_->Call("load", {{"text", text_}});
   if (!a.ok) {
-    *error = a.error;
+    *failed = std::move(a);
     return false;
   }
   loaded_ = true;
   return true;
 }
 
-json Hub::Call(const std::string& method, const json& params) {
-  std::string error;
-  if (!Ensure(&error)) throw std::runtime_error(error);
-  const SlaveAnswer a = slave_->Call(method, params);
-  if (a.died) {
+SlaveAnswer Hub::Ask(const std::string& method, const json& params) {
+  SlaveAnswer a;
+  // A slave found dead is restarted once, loaded with the last text known
+  // here (edits not yet simulated included), and asked again; only when
+  // that fails too do the views hear why.
+  for (int attempt = 0; attempt < 2; ++attempt) {
+    if (Ensure(&a)) a = slave_->Call(method, params);
+    if (!a.died) return a;
     loaded_ = false;
-    Broadcast({{"event", "error"}, {"message", a.error}});
   }
+  Broadcast({{"event", "error"}, {"message", a.error}});
+  return a;
+}
+
+json Hub::Call(const std::string& method, const json& params) {
+  const SlaveAnswer a = Ask(method, params);
   if (!a.ok) throw std::runtime_error(a.error);
   return a.result;
 }
 
 json Hub::Resimulate() {
-  std::string error;
-  if (!Ensure(&error)) throw std::runtime_error(error);
-  const SlaveAnswer sim = slave_->Call("simulate", json::object());
-  if (sim.died) loaded_ = false;
+  const SlaveAnswer sim = Ask("simulate", json::object());
   if (!sim.ok) {
     sim_error_ = sim.error;
     return {{"ok", false}, {"error", sim.error}};
@@ -638,11 +646,11 @@ void HttpSession::OnRequest() {
   if (req.method() != http::verb::get && req.method() != http::verb::head)
     return Respond(http::status::method_not_allowed, "text/plain", "only GET\n");
   bool ok = false;
-  if (path == "/editor.js") {
-    std::string js = ReadFile(o.web_root + "/editor.js", &ok);
+  if (path == "/editor.js" || path == "/document.js") {
+    std::string js = ReadFile(o.web_root + path, &ok);
     if (!ok)
       return Respond(http::status::not_found, "text/plain",
-                     "the editor bundle was not built (web/, needs node)\n");
+                     "the browser bundle was not built (web/, needs node)\n");
     return Respond(http::status::ok, "text/javascript; charset=utf-8", std::move(js));
   }
   if (path == "/editor.css") {

@@ -197,6 +197,15 @@ json VelocityFrame(const render::SceneSampler& sampler, double t) {
   return frame;
 }
 
+// A camera for a square picture as a player takes it (a wider picture keeps
+// the vertical field, a taller one the horizontal).
+json CameraJson(const render::Camera& c) {
+  return {{"eye", Vec(c.eye)},
+          {"target", Vec(c.target)},
+          {"up", Vec(c.up)},
+          {"tan_half_fov", std::tan(c.fov_y / 2)}};
+}
+
 json Poses(const render::SceneSampler& sampler, const session::Session* session) {
   const std::vector<double> times = sampler.FrameTimes();
   json names = json::array();
@@ -241,7 +250,8 @@ json Poses(const render::SceneSampler& sampler, const session::Session* session)
             {"radius", Round(framing.radius)},
             {"eye_distance", (camera.eye - camera.target).norm() / framing.radius},
             {"tan_half_fov", std::tan(camera.fov_y / 2)}}},
-          {"views", session ? Views(sampler, *session, times) : json::array()}};
+          {"views", session ? Views(sampler, *session, times) : json::array()},
+          {"camera", CameraJson(render::MakeCamera(*sampler.SceneView(), 1, 1))}};
 }
 
 json Refused(const std::string& why) { return {{"ok", false}, {"error", why}}; }
@@ -268,13 +278,9 @@ json PlayerData(const render::SceneSampler& sampler, const render::ViewState& vi
   const std::vector<double> times = render::SceneSampler::FrameTimes(t0, t1, count);
   json frames = json::array();
   for (double t : times) frames.push_back(PoseFrame(sampler, t));
-  const render::Camera c = render::MakeCamera(view, 1, 1);
   data["times"] = times;
   data["poses"] = std::move(frames);
-  data["camera"] = {{"eye", Vec(c.eye)},
-                    {"target", Vec(c.target)},
-                    {"up", Vec(c.up)},
-                    {"tan_half_fov", std::tan(c.fov_y / 2)}};
+  data["camera"] = CameraJson(render::MakeCamera(view, 1, 1));
   return data;
 }
 

@@ -22,7 +22,9 @@
 //                      framing: {center, radius, eye_distance, tan_half_fov}
 //                      (asgard render's default view and camera),
 //                      views: [{name, fov_y, moves, cameras: [[eye target up]
-//                      per frame]}]}
+//                      per frame]}],
+//                      camera: {eye, target, up, tan_half_fov} (the scene's
+//                      view as a rendition draws it, for a square picture)}
 //
 // meshes and poses need a successful simulate; before it they answer
 // {ok: false, error}.

@@ -160,6 +160,16 @@ TEST(EditorRpc, ViewCamerasFollowTheirBodyAndLightsComeWithTheMeshes) {
     for (int c = 0; c < 3; ++c) d += std::pow(cam[0][c].get<double>() - cam[1][c].get<double>(), 2);
     EXPECT_NEAR(std::sqrt(d), render::kEyeDistance * radius / 2, 1e-5);
   }
+  // The renditions' camera (the scene's last view, as the document view's
+  // WebGL player takes it): eye kEyeDistance radii / scale from the target,
+  // the view's field.
+  const json& camera = poses["camera"];
+  double d = 0;
+  for (int c = 0; c < 3; ++c)
+    d += std::pow(camera["eye"][c].get<double>() - camera["target"][c].get<double>(), 2);
+  EXPECT_NEAR(std::sqrt(d), render::kEyeDistance * radius / 2, 1e-5);
+  EXPECT_NEAR(camera["tan_half_fov"].get<double>(), std::tan(view["fov_y"].get<double>() / 2),
+              1e-12);
   const json meshes = *Dispatch("meshes", json::object(), &s, &sampler);
   ASSERT_EQ(meshes["lights"].size(), 1u);
   const json& light = meshes["lights"][0];

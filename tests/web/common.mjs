@@ -1,5 +1,6 @@
 // Shared by the editor's tests: start `asgard studio` and find its URL.
 import { spawn } from 'node:child_process';
+import { readFileSync, readdirSync } from 'node:fs';
 
 export const sleep = (ms) => new Promise((r) => setTimeout(r, ms));
 
@@ -15,9 +16,9 @@ export function checker() {
 
 // Starts the server on a free port; resolves {url, port, proc}.  `command`
 // is asgard's `studio` (a scene) or dochost's `serve` (a document).
-export function startStudio(asgard, scene, command = 'studio') {
+export function startStudio(asgard, scene, command = 'studio', extra = []) {
   return new Promise((resolve, reject) => {
-    const proc = spawn(asgard, [command, scene, '--port', '0'], { stdio: ['ignore', 'pipe', 'pipe'] });
+    const proc = spawn(asgard, [command, scene, '--port', '0', ...extra], { stdio: ['ignore', 'pipe', 'pipe'] });
     let out = '';
     const timer = setTimeout(() => reject(new Error(`no URL from asgard studio: ${out}`)), 20000);
     proc.stdout.on('data', (d) => {
@@ -109,4 +110,37 @@ export async function browserTest(asgard, scene, what, body) {
   }
   if (failures.length) { console.log(`${failures.length} failure(s)`); process.exit(1); }
   console.log(`all ${what} checks passed`);
+}
+
+// The live asgard-core children of process `pid` (from /proc).
+export function coreChildren(pid) {
+  const out = [];
+  for (const name of readdirSync('/proc')) {
+    if (!/^\d+$/.test(name)) continue;
+    let stat;
+    try { stat = readFileSync(`/proc/${name}/stat`, 'latin1'); } catch { continue; }
+    const close = stat.lastIndexOf(')');
+    const comm = stat.slice(stat.indexOf('(') + 1, close);
+    const [state, ppid] = stat.slice(close + 2).split(' ');
+    if (comm === 'asgard-core' && Number(ppid) === pid && state !== 'Z') out.push(Number(name));
+  }
+  return out;
+}
+
+// One WebSocket view of animation `a` (Node's WebSocket): call(method,
+// params) → the whole answer {id, result | error}; `events` collects what
+// the server broadcasts.
+export async function wsView(port, a = 0) {
+  const ws = new WebSocket(`ws://127.0.0.1:${port}/ws?a=${a}`);
+  await new Promise((resolve, reject) => { ws.onopen = resolve; ws.onerror = reject; });
+  const pending = new Map(), events = [];
+  let id = 0;
+  ws.onmessage = (m) => {
+    const d = JSON.parse(m.data);
+    if (d.id && pending.has(d.id)) { pending.get(d.id)(d); pending.delete(d.id); } else events.push(d);
+  };
+  const call = (method, params = {}) => new Promise((resolve) => {
+    const n = ++id; pending.set(n, resolve); ws.send(JSON.stringify({ id: n, method, params }));
+  });
+  return { ws, call, events };
 }

@@ -3,7 +3,9 @@
 // position handle changes `-init_pos` in every language viewer while
 // dragging and re-simulates on release; a new body line, Update, shows the
 // body in both tabs; an error is marked at its line while the old scene stays
-// shown; Undo restores the text.  Screenshots go to OUT_DIR.
+// shown; Undo restores the text.  Ctrl+Z in a language viewer undoes its
+// unsent typing, then is the session's Undo (text and picture), Ctrl+Shift+Z
+// its Redo.  Screenshots go to OUT_DIR.
 import { readFileSync } from 'node:fs';
 import { join } from 'node:path';
 import { browserTest, sleep, waitFor } from './common.mjs';
@@ -53,6 +55,39 @@ await browserTest(asgard, scene, 'editor', async ({ check, url, context }) => {
   check(released, `on release the motion is re-simulated and shown in both tabs (b3 now starts at {${after}})`);
   await a.evaluate(() => window.asgard.graphical.seek(1.5));
   await a.screenshot({ path: join(outDir, '3-after-drag.png') });
+
+  // One history: typing not yet sent is undone in its viewer alone (Ctrl+Z,
+  // no session change); the next Ctrl+Z is the session's Undo — the drag's
+  // value leaves every language viewer and b3 starts where it did in both
+  // tabs' pictures — and Ctrl+Shift+Z (Redo) brings the drag back.
+  const dragged = b3Pos((await viewerTexts(b))[0]);
+  const startOf = (p) => p.evaluate(() => { window.asgard.graphical.seek(0); return window.asgard.graphical.bodyPosition('b3'); });
+  const startsAt = async (want) => {
+    for (const p of [a, b]) {
+      const q = await startOf(p);
+      if (Math.hypot(q[0] - want[0], q[1] - want[1], q[2] - want[2]) > 1e-6) return false;
+    }
+    return true;
+  };
+  const everyB3 = async (want) => [...await viewerTexts(a), ...await viewerTexts(b)].every((t) => b3Pos(t) === want);
+  const draggedStart = await startOf(a);
+  const inB = b.locator('.viewer[data-viewer="0"] .cm-content');
+  await inB.click();
+  await b.keyboard.press('Control+End');
+  const statesBefore = await b.evaluate(() => window.asgard.stateCount);
+  await b.keyboard.insertText('# a note, not sent\n');
+  await b.keyboard.press('Control+z');
+  const local = await waitFor(async () => !(await viewerTexts(b))[0].includes('a note'), 'the typing undone');
+  check(local && await everyB3(dragged) && (await b.evaluate(() => window.asgard.stateCount)) === statesBefore,
+    'Ctrl+Z first undoes typing not yet sent, in its viewer alone (the session is untouched)');
+  await b.keyboard.press('Control+z');
+  check(await waitFor(() => everyB3(original), 'the session undo'),
+    `the next Ctrl+Z is the session's Undo: -init_pos {${original}} again in all three language viewers`);
+  check(await waitFor(() => startsAt(startPos), 'b3 back in the pictures'), `and b3 starts at (${startPos}) again in both tabs' pictures`);
+  await a.screenshot({ path: join(outDir, '3b-undone-by-ctrl-z.png') });
+  await b.keyboard.press('Control+Shift+KeyZ');
+  check(await waitFor(() => everyB3(dragged), 'the session redo'), `Ctrl+Shift+Z redoes the drag: {${dragged}} in every viewer`);
+  check(await waitFor(() => startsAt(draggedStart), 'b3 dragged in the pictures'), `and b3 starts where it was dragged to (${draggedStart})`);
 
   // Type a new body, Update in the second language viewer of the first tab.
   const editor = a.locator('.viewer[data-viewer="1"] .cm-content');

@@ -9,11 +9,11 @@ HERE=$(cd "$(dirname "$0")" && pwd)
 if ! command -v node >/dev/null 2>&1; then
   echo "SKIP: node is not installed"; exit 77
 fi
-# server and docserve need node alone (docserve its WebSocket: Node 20's
-# --experimental-websocket).
+# server, docserve and restart need node alone (docserve and restart its
+# WebSocket: Node 20's --experimental-websocket).
 FLAGS=
-if [ "$WHICH" = docserve ]; then FLAGS=--experimental-websocket; fi
-if [ "$WHICH" != server ] && [ "$WHICH" != docserve ]; then
+if [ "$WHICH" = docserve ] || [ "$WHICH" = restart ]; then FLAGS=--experimental-websocket; fi
+if [ "$WHICH" != server ] && [ "$WHICH" != docserve ] && [ "$WHICH" != restart ]; then
   if [ ! -x /usr/bin/chromium ]; then echo "SKIP: /usr/bin/chromium is not installed"; exit 77; fi
   if [ ! -f "$SOURCE/web/node_modules/playwright-core/package.json" ]; then
     echo "SKIP: playwright-core is not installed in web/node_modules (the build runs npm ci)"; exit 77

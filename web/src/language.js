@@ -1,13 +1,20 @@
 // A language viewer (seed 4.2): the scene text in CodeMirror 6 with Update,
 // Save and Revert.  Text changes from the session (another viewer's Update, a
 // handle dragged) arrive as ordinary editor transactions — the smallest
-// replacement — so the editor's own undo sees them.  Errors are marked at
+// replacement.  One history: every change the session made (a graphical
+// edit, an Update, a created or deleted element) is the session's undo step,
+// so the editor's undo (Mod-z) and redo (Mod-y, Mod-Shift-z) are the
+// session's Undo and Redo — text and picture — except for typing not yet
+// sent with Update, which they undo and redo here first (CodeMirror's own
+// history holds only that typing: the session's changes are not added to it
+// and each one closes its group).  Errors are marked at
 // their spans and listed under the text.  Graphically editable literals are
 // highlighted, read-only ones say why on hover, long point lists are elided
 // (literals.js).
 import { EditorView, basicSetup } from 'codemirror';
-import { StateEffect, StateField } from '@codemirror/state';
-import { Decoration } from '@codemirror/view';
+import { Prec, StateEffect, StateField, Transaction } from '@codemirror/state';
+import { Decoration, keymap } from '@codemirror/view';
+import { isolateHistory, redo, undo } from '@codemirror/commands';
 import { setDiagnostics } from '@codemirror/lint';
 import { literalTooltips, literalsField, setLiterals } from './literals.js';
 
@@ -48,18 +55,53 @@ export class LanguageViewer {
     this.errors = document.createElement('div');
     this.errors.className = 'errors';
     parent.appendChild(root);
-    this.view = new EditorView({ doc: '', extensions: [basicSetup, EditorView.lineWrapping, errorLines, this.literals, literalTooltips(this.literals)], parent: root });
+    this.actions = actions;
+    this.localRedo = 0;  // typing undone here that redo brings back first
+    const history = Prec.highest(keymap.of([
+      { key: 'Mod-z', run: () => { this.undo(); return true; }, preventDefault: true },
+      { key: 'Mod-y', run: () => { this.redo(); return true; }, preventDefault: true },
+      { key: 'Mod-Shift-z', run: () => { this.redo(); return true; }, preventDefault: true },
+    ]));
+    // New typing ends what a redo could bring back.
+    const typing = EditorView.updateListener.of((u) => {
+      for (const tr of u.transactions)
+        if (tr.docChanged && tr.annotation(Transaction.addToHistory) !== false && !tr.isUserEvent('undo') && !tr.isUserEvent('redo'))
+          this.localRedo = 0;
+    });
+    this.view = new EditorView({ doc: '', extensions: [history, basicSetup, typing, EditorView.lineWrapping, errorLines, this.literals, literalTooltips(this.literals)], parent: root });
     root.appendChild(this.errors);
     this.root = root;
   }
 
   text() { return this.view.state.doc.toString(); }
 
+  // Typing not yet sent with Update.
+  hasLocalChanges() { return this.text() !== this.session; }
+
+  // Undo: this viewer's unsent typing first (all of it at once when
+  // CodeMirror's history has none left: the session's text), else the
+  // session's Undo.  Redo: typing undone here, else the session's Redo.
+  undo() {
+    if (!this.hasLocalChanges()) return this.actions.undo();
+    if (undo(this.view)) ++this.localRedo;
+    else this.revert();
+    return Promise.resolve();
+  }
+  redo() {
+    if (this.localRedo > 0 && redo(this.view)) { --this.localRedo; return Promise.resolve(); }
+    this.localRedo = 0;
+    return this.actions.redo();
+  }
+
   // Adopt the session's text (as a minimal change) and, when given, its
   // diagnostics and parameters.
   showSession(text, diagnostics, parameters) {
+    const changed = text !== this.session;
     this.session = text;
     const old = this.text();
+    // The session's change is its own undo step, not CodeMirror's: not in
+    // the local history, and no typing before or after joins its group.
+    const annotations = [Transaction.addToHistory.of(false), isolateHistory.of('full')];
     if (old !== text) {
       let a = 0;
       while (a < old.length && a < text.length && old[a] === text[a]) ++a;
@@ -69,8 +111,12 @@ export class LanguageViewer {
       this.view.dispatch({
         changes: { from: a, to: old.length - b, insert: text.slice(a, text.length - b) },
         userEvent: 'input.session',
+        annotations,
       });
+    } else if (changed) {
+      this.view.dispatch({ annotations });  // this viewer's typing, now the session's (Update)
     }
+    if (changed) this.localRedo = 0;
     if (diagnostics) this.mark(diagnostics);
     if (parameters) {
       this.parameters = parameters;
@@ -115,6 +161,7 @@ export class LanguageViewer {
   }
 
   revert() {
+    this.localRedo = 0;
     this.showSession(this.session, null);
     this.markLiterals();
   }

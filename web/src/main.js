@@ -42,6 +42,8 @@ function applyState(state) {
 function addLanguageViewer() {
   const v = new LanguageViewer(document.getElementById('language'), app.languageViewers.length, {
     update: (text) => run('update', { text }),
+    undo: () => run('undo', {}).catch(() => {}),
+    redo: () => run('redo', {}).catch(() => {}),
     save: async (text) => {
       if (text !== app.text) await run('update', { text });
       await run('save', {});
@@ -379,8 +381,12 @@ async function main() {
     app.graphical.fit();
     app.graphical.seek(app.graphical.t);
   };
-  document.getElementById('undo').onclick = () => run('undo', {});
-  document.getElementById('redo').onclick = () => run('redo', {});
+  // Undo and Redo as in a language viewer (one history): a viewer's unsent
+  // typing first — the one last typed in — else the session's.
+  const typedIn = () => app.languageViewers.find((v) => v.view.hasFocus) ||
+    [...app.languageViewers].reverse().find((v) => v.hasLocalChanges() || v.localRedo > 0);
+  document.getElementById('undo').onclick = () => { const v = typedIn(); return v ? v.undo() : run('undo', {}); };
+  document.getElementById('redo').onclick = () => { const v = typedIn(); return v ? v.redo() : run('redo', {}); };
   document.getElementById('add-viewer').onclick = () => addLanguageViewer();
   for (const [, id] of SIMULATOR)
     document.getElementById(id).addEventListener('change', () => editSimulator());

@@ -133,8 +133,16 @@ function program(gl) {
   return gl.getProgramParameter(p, gl.LINK_STATUS) ? p : null;
 }
 
-function createPlayer(figure, fallback, data) {
-  const width = fallback.width, height = fallback.height;
+// Numbers given as base64 of the typed array (an exported page) or as a
+// plain array (the editor server's pose stream).
+const floats = (x) => (typeof x === 'string' ? new Float32Array(bytes(x)) : Float32Array.from(x || []));
+const indices = (x, i32) => (typeof x === 'string' ? (i32 ? new Uint32Array(bytes(x)) : new Uint16Array(bytes(x)))
+  : Uint32Array.from(x || []));
+
+export function createPlayer(figure, fallback, data) {
+  // The fallback's size as written (a picture not yet loaded has none of its own).
+  const width = Number(fallback.getAttribute('width')) || fallback.width;
+  const height = Number(fallback.getAttribute('height')) || fallback.height;
   const canvas = document.createElement('canvas');
   const ratio = window.devicePixelRatio || 1;
   canvas.width = Math.round(width * ratio);
@@ -142,7 +150,7 @@ function createPlayer(figure, fallback, data) {
   canvas.style.width = `${width}px`;
   canvas.style.height = `${height}px`;
   canvas.className = 'asgard-webgl';
-  canvas.setAttribute('aria-label', `${fallback.getAttribute('aria-label') || 'animation'} (WebGL)`);
+  canvas.setAttribute('aria-label', `${fallback.getAttribute('aria-label') || fallback.getAttribute('alt') || 'animation'} (WebGL)`);
   let gl = null;
   try { gl = canvas.getContext('webgl', { antialias: true, preserveDrawingBuffer: true }); } catch { gl = null; }
   const prog = gl && program(gl);
@@ -152,43 +160,53 @@ function createPlayer(figure, fallback, data) {
     count: loc('count'), lightPos: loc('lightPos'), lightColor: loc('lightColor') };
   const aPos = gl.getAttribLocation(prog, 'position'), aNor = gl.getAttribLocation(prog, 'normal');
 
-  // Meshes, in body coordinates.
-  const bodies = data.bodies.map((b) => ({
-    name: b.name, pose: b.pose, track: b.track,
-    pieces: b.pieces.map((p) => {
-      const m = p.sphere ? sphereMesh(p.sphere.slice(0, 3), p.sphere[3])
-        : hullMesh(new Float32Array(bytes(p.v)), p.i32 ? new Uint32Array(bytes(p.i)) : new Uint16Array(bytes(p.i)));
-      const buffer = gl.createBuffer();
-      const interleaved = new Float32Array(m.pos.length * 2);
-      for (let k = 0; k < m.pos.length / 3; ++k) interleaved.set([...m.pos.slice(3 * k, 3 * k + 3), ...m.nor.slice(3 * k, 3 * k + 3)], 6 * k);
-      gl.bindBuffer(gl.ARRAY_BUFFER, buffer);
-      gl.bufferData(gl.ARRAY_BUFFER, interleaved, gl.STATIC_DRAW);
-      return { buffer, count: m.pos.length / 3, color: p.color };
-    }),
-  }));
-  const poses = data.poses ? new Float32Array(bytes(data.poses)) : new Float32Array(0);
-  const tracks = bodies.reduce((n, b) => Math.max(n, b.track === undefined ? 0 : b.track + 1), 0);
-
-  // Lights as the editor's viewer has them: the scene's, or a sky and a sun.
-  const lights = (data.lights && data.lights.length ? data.lights : null);
+  // The scene (replaced by setScene when the motion changes): meshes in
+  // body coordinates, the poses per frame and the lights.
+  let bodies = [], poses = new Float32Array(0), tracks = 0, times = null;
   const lightPos = new Float32Array(16), lightColor = new Float32Array(12);
   let count = 0, ambient = [0.5, 0.5, 0.5];
-  if (lights) {
-    for (const l of lights.slice(0, 4)) {
-      lightPos.set(l.directional ? [...l.direction, 0] : [...l.position, 1], 4 * count);
-      lightColor.set(scale(l.color, 0.8 * l.intensity), 3 * count);
-      ++count;
+  function load(d) {
+    for (const b of bodies) for (const piece of b.pieces) gl.deleteBuffer(piece.buffer);
+    bodies = d.bodies.map((b) => ({
+      name: b.name, pose: b.pose, track: b.track,
+      pieces: b.pieces.map((p) => {
+        const m = p.sphere ? sphereMesh(p.sphere.slice(0, 3), p.sphere[3]) : hullMesh(floats(p.v), indices(p.i, p.i32));
+        const buffer = gl.createBuffer();
+        const interleaved = new Float32Array(m.pos.length * 2);
+        for (let k = 0; k < m.pos.length / 3; ++k) interleaved.set([...m.pos.slice(3 * k, 3 * k + 3), ...m.nor.slice(3 * k, 3 * k + 3)], 6 * k);
+        gl.bindBuffer(gl.ARRAY_BUFFER, buffer);
+        gl.bufferData(gl.ARRAY_BUFFER, interleaved, gl.STATIC_DRAW);
+        return { buffer, count: m.pos.length / 3, color: p.color };
+      }),
+    }));
+    poses = floats(d.poses);
+    tracks = bodies.reduce((n, b) => Math.max(n, b.track === undefined ? 0 : b.track + 1), 0);
+    times = d.times && d.times.length === d.n ? d.times : null;  // uneven frame times
+    // Lights as the editor's viewer has them: the scene's, or a sky and a sun.
+    const lights = (d.lights && d.lights.length ? d.lights : null);
+    lightPos.fill(0);
+    lightColor.fill(0);
+    count = 0;
+    if (lights) {
+      ambient = [0.5, 0.5, 0.5];
+      for (const l of lights.slice(0, 4)) {
+        lightPos.set(l.directional ? [...l.direction, 0] : [...l.position, 1], 4 * count);
+        lightColor.set(scale(l.color, 0.8 * l.intensity), 3 * count);
+        ++count;
+      }
+    } else {
+      ambient = [0.4, 0.4, 0.42];
+      lightPos.set([-30, -50, -40, 0, 20, 10, 30, 0], 0);
+      lightColor.set([0.6, 0.6, 0.58, 0.15, 0.15, 0.17], 0);
+      count = 2;
     }
-  } else {
-    ambient = [0.4, 0.4, 0.42];
-    lightPos.set([-30, -50, -40, 0, 20, 10, 30, 0], 0);
-    lightColor.set([0.6, 0.6, 0.58, 0.15, 0.15, 0.17], 0);
-    count = 2;
+    data = d;
   }
+  load(data);
 
   // The camera: asgard render's (the poster's), then turned and zoomed.
-  const home = { eye: data.camera.eye, target: data.camera.target, up: unit(data.camera.up) };
-  let cam = { ...home };
+  let home = { eye: data.camera.eye, target: data.camera.target, up: unit(data.camera.up) };
+  let cam = { ...home }, turned = false;
   const fovY = () => {
     const aspect = width / height, fit = data.camera.tan_half_fov;
     return 2 * Math.atan(aspect >= 1 ? fit : fit / aspect);
@@ -211,8 +229,16 @@ function createPlayer(figure, fallback, data) {
   function poseAt(b, t) {
     if (b.track === undefined) return { p: b.pose.slice(0, 3), q: b.pose.slice(3, 7) };
     const n = data.n, span = data.t1 - data.t0;
-    const x = n > 1 && span > 0 ? Math.min(Math.max((t - data.t0) / span, 0), 1) * (n - 1) : 0;
-    const i = Math.min(Math.floor(x), n - 1), j = Math.min(i + 1, n - 1), s = x - i;
+    let i, j, s;
+    if (times) {  // the frame before t (by bisection) and the one after
+      let lo = 0, hi = n - 1;
+      while (hi - lo > 1) { const mid = (lo + hi) >> 1; if (times[mid] <= t) lo = mid; else hi = mid; }
+      i = lo; j = Math.min(lo + 1, n - 1);
+      s = j > i && times[j] > times[i] ? Math.min(Math.max((t - times[i]) / (times[j] - times[i]), 0), 1) : 0;
+    } else {
+      const x = n > 1 && span > 0 ? Math.min(Math.max((t - data.t0) / span, 0), 1) * (n - 1) : 0;
+      i = Math.min(Math.floor(x), n - 1); j = Math.min(i + 1, n - 1); s = x - i;
+    }
     const at = (f, k) => poses[(f * tracks + b.track) * 7 + k];
     const p = [0, 1, 2].map((k) => at(i, k) * (1 - s) + at(j, k) * s);
     const sign = [3, 4, 5, 6].reduce((acc, k) => acc + at(i, k) * at(j, k), 0) < 0 ? -1 : 1;
@@ -273,10 +299,12 @@ function createPlayer(figure, fallback, data) {
     const axis = unit(add(scale(up, -dx / len), scale(s, -dy / len)));
     const angle = len / (height / 2);
     cam = { eye: add(cam.target, turn(sub(cam.eye, cam.target), axis, angle)), target: cam.target, up: unit(turn(up, axis, angle)) };
+    turned = true;
     draw();
   }
   function zoom(factor) {
     cam = { ...cam, eye: add(cam.target, scale(sub(cam.eye, cam.target), factor)) };
+    turned = true;
     draw();
   }
   let last = null;
@@ -288,13 +316,23 @@ function createPlayer(figure, fallback, data) {
   });
   canvas.addEventListener('pointerup', () => { last = null; });
   canvas.addEventListener('wheel', (e) => { e.preventDefault(); zoom(Math.pow(1.0015, e.deltaY)); }, { passive: false });
-  canvas.addEventListener('dblclick', () => { cam = { ...home }; draw(); });
+  canvas.addEventListener('dblclick', () => { cam = { ...home }; turned = false; draw(); });
 
   fallback.style.display = 'none';
   fallback.parentNode.insertBefore(canvas, fallback);
   figure.dataset.renderer = 'webgl';
   draw(data.t0);
-  return { canvas, draw, project, orbit, zoom, times: { t0: data.t0, t1: data.t1, n: data.n } };
+  // A new motion of the same animation (an edit, a recompute): the camera
+  // stays where the reader turned it.
+  function setScene(d) {
+    load(d);
+    // Not turned by the reader: the new motion's camera (its framing).
+    if (!turned) cam = home = { eye: d.camera.eye, target: d.camera.target, up: unit(d.camera.up) };
+    player.times = { t0: d.t0, t1: d.t1, n: d.n };
+    draw(Math.min(Math.max(shown, d.t0), d.t1));
+  }
+  const player = { canvas, draw, project, orbit, zoom, setScene, times: { t0: data.t0, t1: data.t1, n: data.n } };
+  return player;
 }
 
 window.asgardPlayer = function (figure, fallback, data) {

@@ -1,0 +1,242 @@
+// The live document view of `dochost serve` (seed 6.2.4), bundled into
+// build/web/document.js: each <figure class="rendition" data-a="N"> of the
+// page is a rendition of animation N with the host's toolbar.  It plays in
+// WebGL (player.js) from the meshes and poses the editor server streams
+// (the `open` answer and every `scene` event, as the editor's viewer gets
+// them), so playback needs no server round trip; where WebGL is missing —
+// and while the slave is down, or with Handles on — it shows the slave's
+// picture of the rendition (GET /frame).  Every rendition of one animation
+// follows one clock, so they stay in step.
+import { Connection } from './connection.js';
+import { createPlayer } from './player.js';
+
+// The editor server's meshes and poses as the player takes them (plain
+// arrays for its base64 fields; a body without a track keeps its pose).
+export function playerData(meshes, poses) {
+  const n = poses.times.length, k = poses.bodies.length;
+  const flat = new Float32Array(n * k * 7);
+  poses.poses.forEach((frame, i) => flat.set(frame, i * k * 7));
+  return {
+    t0: poses.t0, t1: poses.t1, n, times: poses.times, camera: poses.camera, lights: meshes.lights,
+    poses: flat,
+    bodies: meshes.bodies.map((b) => {
+      const track = poses.bodies.indexOf(b.name);
+      return {
+        name: b.name, ...(track >= 0 ? { track } : { pose: [0, 0, 0, 0, 0, 0, 1] }),
+        pieces: b.pieces.map((p) => (p.sphere ? { color: p.color, sphere: [...p.center, p.radius] }
+          : { color: p.color, v: p.vertices, i: p.triangles })),
+      };
+    }),
+  };
+}
+
+// As the medium plugin words a simulated node's status.
+const g = (x) => String(Number(x.toPrecision(6)));
+const statusOf = (poses) => `${poses.bodies.length} ${poses.bodies.length === 1 ? 'body' : 'bodies'}, t = ${g(poses.t0)} .. ${g(poses.t1)} s`;
+
+// One animation's time, shared by all its renditions: real-time playback
+// (requestAnimationFrame, the elapsed wall time), loop or stop at the end.
+class Clock {
+  constructor() {
+    this.t = 0; this.t0 = 0; this.t1 = 0;
+    this.playing = false; this.loop = false;
+    this.listeners = new Set();
+  }
+  setInterval(t0, t1) { this.t0 = t0; this.t1 = t1; this.seek(this.t); }
+  seek(t) {
+    this.t = Math.min(Math.max(t, this.t0), this.t1);
+    for (const f of this.listeners) f(this);
+  }
+  play() {
+    if (this.playing) return;
+    if (this.t >= this.t1) this.t = this.t0;
+    this.playing = true;
+    let last = null;
+    const tick = (now) => {
+      if (!this.playing) return;
+      const dt = last === null ? 0 : (now - last) / 1000;
+      last = now;
+      let t = this.t + dt;
+      const span = this.t1 - this.t0;
+      if (t >= this.t1) {
+        if (this.loop && span > 0) t = this.t0 + ((t - this.t0) % span);
+        else { this.playing = false; t = this.t1; }
+      }
+      this.seek(t);
+      if (this.playing) requestAnimationFrame(tick);
+    };
+    requestAnimationFrame(tick);
+    this.seek(this.t);
+  }
+  pause() { this.playing = false; this.seek(this.t); }
+}
+
+// One rendition: the figure's WebGL player, or the slave's picture.
+class Rendition {
+  constructor(figure, animation) {
+    this.figure = figure;
+    this.animation = animation;
+    const q = (c) => figure.querySelector(c);
+    this.img = q('img');
+    this.range = q('.time');
+    this.label = q('.t');
+    this.status = q('.status');
+    this.handles = q('.handles');
+    this.loop = q('.loop');
+    this.playButton = q('.play');
+    this.player = null;
+    this.webgl = true;  // until the player cannot be made
+    this.picture = false;  // showing the slave's picture instead of the player
+    this.drawing = null;
+    this.again = false;
+    const clock = animation.clock;
+    this.range.oninput = () => clock.seek(clock.t0 + (clock.t1 - clock.t0) * this.range.value / 1000);
+    this.loop.onchange = () => {
+      clock.loop = this.loop.checked;
+      for (const r of animation.renditions) r.loop.checked = clock.loop;
+    };
+    this.playButton.onclick = () => (clock.playing ? clock.pause() : clock.play());
+    this.handles.onchange = () => this.show(clock);
+    q('.recompute').onclick = () => animation.recompute(this);
+    const another = q('.another');
+    if (another) another.onclick = () => animation.addRendition(figure);
+  }
+
+  setScene(data) {
+    if (this.webgl && !this.player) {
+      this.player = createPlayer(this.figure, this.img, data);
+      if (!this.player) this.webgl = false;
+    } else if (this.player) {
+      this.player.setScene(data);
+    }
+  }
+
+  // The slave's picture (the fallback) while `on`, else the player.
+  usePicture(on) {
+    this.picture = on || !this.player;
+    if (this.player) this.player.canvas.style.display = this.picture ? 'none' : '';
+    this.img.style.display = this.picture ? '' : 'none';
+    this.figure.dataset.renderer = this.picture ? 'picture' : 'webgl';
+  }
+
+  show(clock) {
+    if (!this.animation.started) return;  // the first scene, or why there is none
+    const frac = clock.t1 > clock.t0 ? (clock.t - clock.t0) / (clock.t1 - clock.t0) : 0;
+    this.range.value = String(Math.round(frac * 1000));
+    this.label.textContent = `t = ${clock.t.toFixed(2)} s`;
+    this.playButton.textContent = clock.playing ? 'Pause' : 'Play';
+    this.figure.dataset.t = String(clock.t);
+    this.usePicture(this.animation.down || this.handles.checked);
+    if (this.picture) return this.drawPicture(clock.t);
+    this.player.draw(clock.t);
+    this.drawn();
+  }
+
+  drawn() { this.figure.dataset.drawn = String(Number(this.figure.dataset.drawn || 0) + 1); }
+
+  // GET /frame at time t; requests made while one is under way coalesce
+  // into one more, at the newest time.
+  async drawPicture(t) {
+    this.pictureTime = t;
+    if (this.drawing) { this.again = true; return this.drawing; }
+    this.drawing = (async () => {
+      const a = this.animation;
+      const r = await fetch(`/frame?a=${a.index}&t=${this.pictureTime}&handles=${this.handles.checked ? 1 : 0}`);
+      const [s0, s1] = (r.headers.get('X-Asgard-Interval') || '0 0').split(' ').map(Number);
+      if (s1 > s0 && !this.player) a.clock.setInterval(s0, s1);
+      a.setStatus((r.headers.get('X-Asgard-Live') === '1' ? '' : '⚠ ') + (r.headers.get('X-Asgard-Status') || ''));
+      if (r.ok) {
+        const old = this.img.src;
+        this.img.src = URL.createObjectURL(await r.blob());
+        if (old) URL.revokeObjectURL(old);
+      }
+      this.drawn();
+    })();
+    try { await this.drawing; } finally { this.drawing = null; }
+    if (this.again) { this.again = false; return this.drawPicture(this.pictureTime); }
+  }
+}
+
+// One animation of the document: its WebSocket (one more view of it, so an
+// edit's new motion from any editor reaches it), its clock and renditions.
+class Animation {
+  constructor(index) {
+    this.index = index;
+    this.clock = new Clock();
+    this.renditions = [];
+    this.data = null;
+    this.down = false;  // the slave died; the next action restarts it
+    this.started = false;  // the `open` answer has come
+    this.template = null;
+    this.conn = new Connection(`ws://${location.host}/ws?a=${index}`);
+    this.clock.listeners.add((c) => { for (const r of this.renditions) r.show(c); });
+  }
+
+  add(figure) {
+    if (!this.template) this.template = figure.cloneNode(true);
+    const r = new Rendition(figure, this);
+    this.renditions.push(r);
+    r.loop.checked = this.clock.loop;
+    if (this.data) r.setScene(this.data);
+    r.show(this.clock);
+    return r;
+  }
+
+  // Another rendition of this animation after `figure`, on the same clock.
+  addRendition(figure) {
+    const f = this.template.cloneNode(true);
+    figure.after(f);
+    return this.add(f);
+  }
+
+  setStatus(text) { for (const r of this.renditions) r.status.textContent = text; }
+
+  scene(meshes, poses) {
+    this.down = false;
+    this.data = playerData(meshes, poses);
+    for (const r of this.renditions) r.setScene(this.data);
+    this.setStatus(statusOf(poses));
+    this.clock.setInterval(poses.t0, poses.t1);
+  }
+
+  async start() {
+    this.conn.on('scene', (m) => this.scene(m.meshes, m.poses));
+    this.conn.on('error', (m) => {
+      this.down = true;
+      this.clock.seek(this.clock.t);  // the picture: the last frame or the poster
+      this.setStatus(`⚠ ${m.message}`);
+    });
+    try {
+      await this.conn.open();
+      const o = await this.conn.call('open', {});
+      this.started = true;
+      if (o.meshes && o.poses && o.poses.times) this.scene(o.meshes, o.poses);
+      else this.clock.seek(0);  // no motion: the slave's picture says why
+    } catch (e) {
+      this.started = true;
+      this.down = true;
+      this.clock.seek(0);
+    }
+  }
+
+  async recompute() {
+    this.setStatus('recomputing…');
+    try {
+      const r = await this.conn.call('simulate', {});
+      if (!r.ok) this.setStatus(`⚠ ${r.error}`);  // the `scene` event brings a new motion
+    } catch (e) {
+      this.setStatus(`⚠ ${e.message}`);
+      this.down = true;
+      this.clock.seek(this.clock.t);
+    }
+  }
+}
+
+const animations = new Map();
+for (const figure of document.querySelectorAll('figure.rendition')) {
+  const a = Number(figure.dataset.a);
+  if (!animations.has(a)) animations.set(a, new Animation(a));
+  animations.get(a).add(figure);
+}
+for (const a of animations.values()) a.start();
+window.asgardDocument = { animations };
