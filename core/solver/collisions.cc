@@ -845,24 +845,35 @@ bool CollisionMonitor::Involves(const Impact& impact, int body) {
 
 // ---- response ----------------------------------------------------------------------
 
+void CollisionMonitor::ApplyEdits(double t) {
+  std::vector<Simulation::Edit> edits;
+  edits.swap(edits_);
+  sim_.ApplyAt(t, edits);
+}
+
 void CollisionMonitor::WriteVelocities(int body, double t, const collide::BodyState& state) {
   const physics::BodyModel& m = sys_.bodies[body];
   // A body resting on something was held there; the impact releases it.
   for (int a = 0; a < 3; ++a)
     for (int slot : {physics::kX + a, physics::kDx + a})
-      if (sim_.Held(m.first_var + slot, t)) sim_.ReleaseAt(m.first_var + slot, t);
+      if (sim_.Held(m.first_var + slot, t)) QueueRelease(m.first_var + slot);
   const Eigen::Vector3d w_body = PoseAt(body, t).R.transpose() * state.w;
   for (int a = 0; a < 3; ++a) {
-    sim_.SetValueAt(m.first_var + physics::kDx + a, t, state.v[a]);
-    sim_.SetValueAt(m.first_var + physics::kW1 + a, t, w_body[a]);
+    QueueSet(m.first_var + physics::kDx + a, state.v[a]);
+    QueueSet(m.first_var + physics::kW1 + a, w_body[a]);
   }
 }
 
 void CollisionMonitor::Wake(int body, double t) {
   if (!Asleep(body, t)) return;
   const physics::BodyModel& m = sys_.bodies[body];
+  // Applied at once: whoever asks next whether it sleeps must hear no.  Its
+  // values are held, so reading them after the cut is reading them before.
+  std::vector<Simulation::Edit> releases;
   for (int s = 0; s < physics::kBodySlots; ++s)
-    if (sim_.Held(m.first_var + s, t)) sim_.ReleaseAt(m.first_var + s, t);
+    if (sim_.Held(m.first_var + s, t))
+      releases.push_back({Simulation::Edit::Kind::kRelease, m.first_var + s});
+  sim_.ApplyAt(t, releases);
   ++counters_.wakes;
   // Whatever sleeps on it wakes too: its support may be about to move.
   const collide::Pose x = PoseAt(body, t);
@@ -876,19 +887,20 @@ void CollisionMonitor::Wake(int body, double t) {
   }
 }
 
-void CollisionMonitor::Sleep(int body, double t) {
+void CollisionMonitor::Sleep(int body, double t, const Eigen::Vector3d& shift) {
   const physics::BodyModel& m = sys_.bodies[body];
   for (int s = 0; s < physics::kBodySlots; ++s)
-    if (sim_.Held(m.first_var + s, t)) sim_.ReleaseAt(m.first_var + s, t);
+    if (sim_.Held(m.first_var + s, t)) QueueRelease(m.first_var + s);
   for (int s = 0; s < physics::kBodySlots; ++s) {
     const int var = m.first_var + s;
     const bool rate =
         (s >= physics::kDx && s < physics::kDx + 3) || (s >= physics::kW1 && s < physics::kW1 + 3);
     if (rate) {
-      sim_.SetValueAt(var, t, 0.0);
-      sim_.HoldAt(var, t, 0.0);
+      QueueSet(var, 0.0);
+      QueueHold(var, 0.0);
     } else {
-      sim_.HoldAt(var, t, sim_.Value(var, t));
+      const bool position = s >= physics::kX && s < physics::kX + 3;
+      QueueHold(var, sim_.Value(var, t) + (position ? shift[s - physics::kX] : 0.0));
     }
   }
   ++counters_.sleeps;
@@ -1019,19 +1031,20 @@ void CollisionMonitor::Respond(const Impact& impact) {
     WriteVelocities(ids[s], t, state[s]);
     if (shift[s].squaredNorm() > 0)
       for (int a = 0; a < 3; ++a)
-        sim_.SetValueAt(m.first_var + physics::kX + a, t,
-                        sim_.Value(m.first_var + physics::kX + a, t, Side::kRight) + shift[s][a]);
+        QueueSet(m.first_var + physics::kX + a,
+                 sim_.Value(m.first_var + physics::kX + a, t, Side::kRight) + shift[s][a]);
     if (!ball_on_immovable) continue;
     const std::vector<int> held =
         RestingAxes(ids[s], s == 0 ? impact.normal : -impact.normal, movable[1 - s], t, state[s].v);
     for (int a = 0; a < 3; ++a)
       if (std::find(held.begin(), held.end(), a) != held.end())
-        sim_.SetValueAt(m.first_var + physics::kDx + a, t, state[s].v[a]);
+        QueueSet(m.first_var + physics::kDx + a, state[s].v[a]);
     for (int a : held) {
-      sim_.HoldAt(m.first_var + physics::kX + a, t, sim_.Value(m.first_var + physics::kX + a, t));
-      sim_.HoldAt(m.first_var + physics::kDx + a, t, 0.0);
+      QueueHold(m.first_var + physics::kX + a, sim_.Value(m.first_var + physics::kX + a, t));
+      QueueHold(m.first_var + physics::kDx + a, 0.0);
     }
   }
+  ApplyEdits(t);
 }
 
 // Slow contacts are solved together: every body in contact with the pair,
@@ -1181,16 +1194,19 @@ void CollisionMonitor::RespondResting(const Impact& impact) {
   impacts_.insert(pos, recorded);
   for (int body : members) {
     const physics::BodyModel& m = sys_.bodies[body];
-    if (auto it = shift.find(body); it != shift.end())
+    const auto it = shift.find(body);
+    const Eigen::Vector3d moved = it != shift.end() ? it->second : Eigen::Vector3d::Zero();
+    if (it != shift.end())
       for (int a = 0; a < 3; ++a)
-        sim_.SetValueAt(m.first_var + physics::kX + a, t,
-                        sim_.Value(m.first_var + physics::kX + a, t, Side::kRight) + it->second[a]);
+        QueueSet(m.first_var + physics::kX + a,
+                 sim_.Value(m.first_var + physics::kX + a, t, Side::kRight) + moved[a]);
     if (all_asleep) {
-      Sleep(body, t);
+      Sleep(body, t, moved);
     } else {
       WriteVelocities(body, t, states[static_cast<size_t>(index[body])]);
     }
   }
+  ApplyEdits(t);
 }
 
 // Resting contact: against an immovable partner, an impact after which the

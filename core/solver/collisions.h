@@ -141,9 +141,21 @@ class CollisionMonitor {
   // The hop period of resting contact (see collisions.cc).
   double HopPeriod(double accel, double radius) const;
   void RespondResting(const Impact& impact);
+  // WriteVelocities and Sleep queue their changes in edits_ (values read
+  // now, before any component is cut back to t), applied at once by
+  // ApplyEdits at the end of the response; Wake applies its own at once.
   void WriteVelocities(int body, double t, const collide::BodyState& state);
   void Wake(int body, double t);
-  void Sleep(int body, double t);
+  // Holds every variable of the body (its position moved by `shift`).
+  void Sleep(int body, double t, const Eigen::Vector3d& shift);
+  void QueueSet(int var, double value) {
+    edits_.push_back({Simulation::Edit::Kind::kSet, var, value});
+  }
+  void QueueHold(int var, double value) {
+    edits_.push_back({Simulation::Edit::Kind::kHold, var, value});
+  }
+  void QueueRelease(int var) { edits_.push_back({Simulation::Edit::Kind::kRelease, var}); }
+  void ApplyEdits(double t);
   int SlowEvents(int body) const;
   // The body's spin after its latest event, when that was a resting solve.
   std::optional<Eigen::Vector3d> LastSpin(int body) const;
@@ -196,6 +208,7 @@ class CollisionMonitor {
   std::vector<long> version_;
   CollisionCounters counters_;
   bool responding_ = false;
+  std::vector<Simulation::Edit> edits_;  // the response's changes at respond_time_
   double last_impact_time_ = -1e300;
   int same_instant_ = 0;  // impacts in a row at last_impact_time_
   double respond_time_ = 0.0;
