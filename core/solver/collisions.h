@@ -11,8 +11,9 @@
 //     narrow phase  per candidate pair and piece pair: TimeOfImpact from the pair's
 //                   start (E0, or the last impact of either body inside the window)
 //     response      the earliest impact (ties: lowest pair) gets an impulse; the
-//                   bodies' velocity variables jump there (Simulation::SetValueAt), which
-//                   truncates their components and, transitively, their readers
+//                   bodies' velocity variables jump there (Simulation::ApplyAt, all of a
+//                   response's changes at once), which truncates their components
+//                   and, transitively, their readers
 //
 // Why fixed windows and not "as soon as both bodies are computed": the time
 // an impact is found at must depend only on the two bodies' waveforms, never
