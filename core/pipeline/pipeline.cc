@@ -97,11 +97,6 @@ bool Solve(Run& run, const RunOptions& options) {
   }
   const auto start = std::chrono::steady_clock::now();
   const bool collide = options.collisions.value_or(!simulator || simulator->collisions);
-  // The collision monitor's resting contact (holds and hops per axis) was
-  // built on a body's axes and rotation being components of their own; with
-  // them fused, the contact tests' resting and symmetric sliding boxes drift
-  // (measured, not yet understood), so bodies fuse only without collisions.
-  if (collide && run.equations->bodies.size() >= 2) so.fuse_bodies = false;
   run.simulation = std::make_unique<solver::Simulation>(*run.equations, so);
   run.simulation->set_budget(options.budget);
   if (collide && run.equations->bodies.size() >= 2) {

@@ -11,8 +11,9 @@
 //     narrow phase  per candidate pair and piece pair: TimeOfImpact from the pair's
 //                   start (E0, or the last impact of either body inside the window)
 //     response      the earliest impact (ties: lowest pair) gets an impulse; the
-//                   bodies' velocity variables jump there (Simulation::SetValueAt), which
-//                   truncates their components and, transitively, their readers
+//                   bodies' velocity variables jump there (Simulation::ApplyAt, all of a
+//                   response's changes at once), which truncates their components
+//                   and, transitively, their readers
 //
 // Why fixed windows and not "as soon as both bodies are computed": the time
 // an impact is found at must depend only on the two bodies' waveforms, never
@@ -141,9 +142,21 @@ class CollisionMonitor {
   // The hop period of resting contact (see collisions.cc).
   double HopPeriod(double accel, double radius) const;
   void RespondResting(const Impact& impact);
+  // WriteVelocities and Sleep queue their changes in edits_ (values read
+  // now, before any component is cut back to t), applied at once by
+  // ApplyEdits at the end of the response; Wake applies its own at once.
   void WriteVelocities(int body, double t, const collide::BodyState& state);
   void Wake(int body, double t);
-  void Sleep(int body, double t);
+  // Holds every variable of the body (its position moved by `shift`).
+  void Sleep(int body, double t, const Eigen::Vector3d& shift);
+  void QueueSet(int var, double value) {
+    edits_.push_back({Simulation::Edit::Kind::kSet, var, value});
+  }
+  void QueueHold(int var, double value) {
+    edits_.push_back({Simulation::Edit::Kind::kHold, var, value});
+  }
+  void QueueRelease(int var) { edits_.push_back({Simulation::Edit::Kind::kRelease, var}); }
+  void ApplyEdits(double t);
   int SlowEvents(int body) const;
   // The body's spin after its latest event, when that was a resting solve.
   std::optional<Eigen::Vector3d> LastSpin(int body) const;
@@ -196,6 +209,7 @@ class CollisionMonitor {
   std::vector<long> version_;
   CollisionCounters counters_;
   bool responding_ = false;
+  std::vector<Simulation::Edit> edits_;  // the response's changes at respond_time_
   double last_impact_time_ = -1e300;
   int same_instant_ = 0;  // impacts in a row at last_impact_time_
   double respond_time_ = 0.0;

@@ -281,17 +281,25 @@ bool Simulation::Run(const std::function<void(double)>& progress) {
   return true;
 }
 
-void Simulation::Truncate(int c, double t, bool strict) {
+void Simulation::Truncate(int c, double t, bool strict) { TruncateAll({c}, t, strict); }
+
+void Simulation::TruncateAll(const std::vector<int>& cs, double t, bool strict) {
   // Cut times propagate in dependency order (components are numbered in
   // it), so each component is cut once, to the earliest time required.
   TruncationScope scope(*this);
   const size_t n = components_.size();
   std::vector<double> cut(n, std::numeric_limits<double>::infinity());
-  cut[c] = t;
+  std::vector<char> source(n, 0);
+  size_t first = n;
+  for (int c : cs) {
+    cut[c] = t;
+    source[c] = 1;
+    first = std::min(first, static_cast<size_t>(c));
+  }
   std::vector<int> affected;
-  for (size_t k = static_cast<size_t>(c); k < n; ++k) {
+  for (size_t k = first; k < n; ++k) {
     if (cut[k] == std::numeric_limits<double>::infinity()) continue;
-    const double kept = components_[k]->Truncate(cut[k], strict && k == static_cast<size_t>(c));
+    const double kept = components_[k]->Truncate(cut[k], strict && source[k]);
     // Events after the requested time are void; earlier ones stand (a
     // component cut back further than t only recomputes up to them).
     components_[k]->ForgetAfter(t, strict);
@@ -299,13 +307,13 @@ void Simulation::Truncate(int c, double t, bool strict) {
     if (on_truncate) on_truncate(*this, static_cast<int>(k), kept);
     for (int d : partition_.downstream[k]) cut[d] = std::min(cut[d], kept);
   }
-  RebuildBreakpoints(c);
+  RebuildBreakpoints(cs);
   RepairQueue(affected);
 }
 
 void Simulation::CopyResults(int c, const Component& from) {
   components_[c]->CopyResults(from);
-  RebuildBreakpoints(c);
+  RebuildBreakpoints({c});
   RepairQueue({c});
 }
 
@@ -327,11 +335,15 @@ void Simulation::ResetToStart(int c) {
   RepairQueue(affected);
 }
 
-void Simulation::RebuildBreakpoints(int c) {
+void Simulation::RebuildBreakpoints(const std::vector<int>& cs) {
   // Dependency order: upstream components are final when a reader is rebuilt.
   std::vector<char> dirty(components_.size(), 0);
-  dirty[c] = 1;
-  for (size_t k = static_cast<size_t>(c); k < components_.size(); ++k) {
+  size_t first = components_.size();
+  for (int c : cs) {
+    dirty[c] = 1;
+    first = std::min(first, static_cast<size_t>(c));
+  }
+  for (size_t k = first; k < components_.size(); ++k) {
     if (!dirty[k]) continue;
     std::vector<double> inherited;
     for (int u : partition_.upstream[k]) {
@@ -343,21 +355,38 @@ void Simulation::RebuildBreakpoints(int c) {
   }
 }
 
-// Truncates var's component to t and applies `edit` to it there (a jump, a
-// hold or its release); observers hear of it once the outermost change ends.
-template <typename Edit>
-void Simulation::ChangeAt(int var, double t, Edit edit) {
+void Simulation::ApplyAt(double t, const std::vector<Edit>& edits) {
+  if (edits.empty()) return;
   TruncationScope scope(*this);
-  const int c = partition_.component_of[var];
-  Truncate(c, t);
-  edit(*components_[c], local_index_[var]);
-  RebuildBreakpoints(c);
-  RepairQueue({c});
+  std::vector<int> cs;
+  cs.reserve(edits.size());
+  for (const Edit& e : edits) cs.push_back(partition_.component_of[e.var]);
+  std::sort(cs.begin(), cs.end());
+  cs.erase(std::unique(cs.begin(), cs.end()), cs.end());
+  TruncateAll(cs, t, /*strict=*/false);
+  for (const Edit& e : edits) {
+    Component& c = *components_[partition_.component_of[e.var]];
+    const int local = local_index_[e.var];
+    switch (e.kind) {
+      case Edit::Kind::kSet:
+        c.AddJump(t, local, e.value);
+        break;
+      case Edit::Kind::kHold:
+        c.AddHold(t, local, e.value);
+        break;
+      case Edit::Kind::kRelease:
+        c.ReleaseHold(t, local);
+        break;
+    }
+  }
+  RebuildBreakpoints(cs);
+  RepairQueue(cs);
+  for (const Edit& e : edits)
+    if (e.kind == Edit::Kind::kSet) ChargeImpulse(e.var, t);
 }
 
 void Simulation::SetValueAt(int var, double t, double value) {
-  ChangeAt(var, t, [&](Component& c, int local) { c.AddJump(t, local, value); });
-  ChargeImpulse(var, t);
+  ApplyAt(t, {{Edit::Kind::kSet, var, value}});
 }
 
 long Simulation::impulses_this_run(int body) const {
@@ -382,12 +411,10 @@ void Simulation::ChargeImpulse(int var, double t) {
 }
 
 void Simulation::HoldAt(int var, double t, double value) {
-  ChangeAt(var, t, [&](Component& c, int local) { c.AddHold(t, local, value); });
+  ApplyAt(t, {{Edit::Kind::kHold, var, value}});
 }
 
-void Simulation::ReleaseAt(int var, double t) {
-  ChangeAt(var, t, [&](Component& c, int local) { c.ReleaseHold(t, local); });
-}
+void Simulation::ReleaseAt(int var, double t) { ApplyAt(t, {{Edit::Kind::kRelease, var}}); }
 
 bool Simulation::Held(int var, double t) const {
   return components_[partition_.component_of[var]]->Held(local_index_[var], t);

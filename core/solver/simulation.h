@@ -133,6 +133,23 @@ class Simulation {
   void HoldAt(int var, double t, double value);
   void ReleaseAt(int var, double t);
   bool Held(int var, double t) const;
+  // One change of a variable at an instant: a jump to `value`, a hold at
+  // `value`, or the end of a hold.
+  struct Edit {
+    enum class Kind { kSet, kHold, kRelease };
+    Kind kind;
+    int var;
+    double value = 0.0;
+  };
+  // Makes all `edits` at t at once, in their order (a later jump of the same
+  // variable supersedes an earlier one): every component they touch is cut
+  // back once, its breakpoints and its readers' are rebuilt once, and
+  // observers hear of it once.  The same result as calling SetValueAt,
+  // HoldAt and ReleaseAt in turn, at the cost of one of them per component
+  // (a resting event writes a dozen variables of every body in its island).
+  // Values the caller reads for the edits must be read before: a component
+  // cut back to t answers for t with its last sample before t.
+  void ApplyAt(double t, const std::vector<Edit>& edits);
 
   // Stops the run with `message` (an observer found a problem it cannot
   // resolve); Run and StepOnce then return false and error() says why.
@@ -169,8 +186,8 @@ class Simulation {
     }
     Simulation& sim;
   };
-  template <typename Edit>
-  void ChangeAt(int var, double t, Edit edit);
+  // Truncate for several components at once, each to t.
+  void TruncateAll(const std::vector<int>& cs, double t, bool strict);
   bool Eligible(int c) const;
   // Counts an accepted step of c against the budget; false (and the run
   // failed) once it is exhausted.
@@ -180,8 +197,8 @@ class Simulation {
   void StartRun();
   void Push(int c);
   void RepairQueue(const std::vector<int>& affected);
-  // Recomputes the dynamic breakpoints of c and of everything downstream.
-  void RebuildBreakpoints(int c);
+  // Recomputes the dynamic breakpoints of `cs` and of everything downstream.
+  void RebuildBreakpoints(const std::vector<int>& cs);
 
   const physics::EquationSystem& sys_;
   SolverOptions options_;
