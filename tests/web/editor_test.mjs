@@ -53,7 +53,7 @@ await browserTest(asgard, scene, 'editor', async ({ check, url, context }) => {
     far(l2.slice(0, 3), bodyPoint(f, 'b2', [5, 0, 0]));
     far(l2.slice(3), bodyPoint(f, 'b1', [-5, 0, 0]));
     far(stream.arrows[f].slice(0, 3), bodyPoint(f, 'b1', [0, 0, 0]));
-    far(stream.arrows[f].slice(3), [0, -100, 0]);
+    far(stream.arrows[f].slice(3, 6), [0, -100, 0]);
     far(stream.arrows[f].slice(9), [0, -100, 0]);
   }
   check(stream.links.length === stream.n && stream.links.every((l) => l.length === 12) && stream.arrows.every((l) => l.length === 12) &&

@@ -166,7 +166,7 @@ try {
   for (const [id, kind, rgb, count] of [['anim-1', 'arrows', [204, 26, 26], 1], ['anim-2', 'links', [26, 140, 51], 3]]) {
     const seen = await page2.evaluate(({ id, kind, rgb }) => {
       const fig = document.getElementById(id);
-      fig.asgard.showTime(1.0);
+      fig.asgard.showTime(0.1);
       const segments = fig.asgard.webgl.overlays()[kind];
       const gl = fig.querySelector('canvas.asgard-webgl');
       const c = document.createElement('canvas');
