@@ -260,13 +260,30 @@ std::string PlayerJson(const std::string& reply, std::string* error) {
       for (size_t b = 0; b < nb; ++b)
         if (track[b] >= 0)
           for (size_t k = 0; k < 7; ++k) PutF32(packed, poses[f][7 * b + k].get<double>());
-    const json out = {{"t0", t0},
-                      {"t1", t1},
-                      {"n", n},
-                      {"camera", in.at("camera")},
-                      {"lights", in.value("lights", json::array())},
-                      {"bodies", std::move(out_bodies)},
-                      {"poses", document::Base64Encode(packed)}};
+    json out = {{"t0", t0},
+                {"t1", t1},
+                {"n", n},
+                {"camera", in.at("camera")},
+                {"lights", in.value("lights", json::array())},
+                {"bodies", std::move(out_bodies)},
+                {"poses", document::Base64Encode(packed)}};
+    // Links and force arrows, six numbers each per frame, packed as the
+    // poses are (a slave without them leaves them out).
+    for (const char* key : {"links", "arrows"}) {
+      if (!in.contains(key)) continue;
+      const json& frames = in.at(key);
+      if (frames.size() != n) return fail(std::string("has not one ") + key + " list per time");
+      const size_t count = frames[0].size();
+      if (count % 6) return fail(std::string("has ") + key + " without 6 numbers each");
+      std::string numbers;
+      numbers.reserve(n * count * 4);
+      for (const json& frame : frames) {
+        if (frame.size() != count) return fail(std::string("has frames with unlike ") + key);
+        for (const json& x : frame) PutF32(numbers, x.get<double>());
+      }
+      out[key] = document::Base64Encode(numbers);
+    }
+    if (in.contains("arrow_length")) out["arrow_length"] = in.at("arrow_length");
     // Inside <script type="application/json">: no "</" may occur.
     std::string text = out.dump();
     for (size_t at = text.find("</"); at != std::string::npos; at = text.find("</", at + 3))

@@ -162,6 +162,50 @@ json PoseFrame(const render::SceneSampler& sampler, double t) {
   return frame;
 }
 
+// The overlays a player draws at time t, one list each: every link's two
+// ends [ax ay az bx by bz] (LinkSegments: links whose bodies or trajectory
+// are unknown are left out for the whole run), and every scene force's
+// point of application and world vector [bx by bz fx fy fz] (all zero
+// where the force cannot be evaluated, so the count never changes).
+struct OverlayFrame {
+  json links = json::array(), arrows = json::array();
+};
+OverlayFrame Overlays(const render::SceneSampler& sampler, double t) {
+  const std::vector<render::Pose> poses = sampler.Poses(t);
+  OverlayFrame frame;
+  for (const auto& s : sampler.LinkSegments(t, poses))
+    for (double v : {s.a.x(), s.a.y(), s.a.z(), s.b.x(), s.b.y(), s.b.z()})
+      frame.links.push_back(Round(v));
+  // ForceVectors has the forces that can be evaluated, in scene order.
+  const auto values = sampler.ForceValues(t);
+  const auto vectors = sampler.ForceVectors(t, poses);
+  size_t next = 0;
+  for (const auto& value : values) {
+    render::Segment s{Eigen::Vector3d::Zero(), Eigen::Vector3d::Zero()};
+    if (value && next < vectors.size()) s = vectors[next++];
+    const Eigen::Vector3d f = s.b - s.a;
+    for (double v : {s.a.x(), s.a.y(), s.a.z(), f.x(), f.y(), f.z()})
+      frame.arrows.push_back(Round(v));
+  }
+  return frame;
+}
+
+// Adds the overlays at `times` to a player's data: links and arrows (one
+// list per frame) and the length the longest arrow is drawn at (as asgard
+// render's: a fifth of the view's radius).
+void AddOverlays(json& data, const render::SceneSampler& sampler, const std::vector<double>& times,
+                 double radius) {
+  json links = json::array(), arrows = json::array();
+  for (double t : times) {
+    OverlayFrame f = Overlays(sampler, t);
+    links.push_back(std::move(f.links));
+    arrows.push_back(std::move(f.arrows));
+  }
+  data["links"] = std::move(links);
+  data["arrows"] = std::move(arrows);
+  data["arrow_length"] = Round(radius / 5);
+}
+
 // [vx vy vz wx wy wz] of every body at time t (ω in world axes), one list:
 // differences of the poses over a step of 1e-5 of the run (central inside,
 // second order one-sided at the ends) — what a viewer needs to interpolate
@@ -235,23 +279,25 @@ json Poses(const render::SceneSampler& sampler, const session::Session* session)
   // ask for a movie seen as it shows the scene.
   const render::ViewState framing = sampler.ElementView(nullptr);
   const render::Camera camera = render::MakeCamera(framing, 1, 1);
-  return {{"ok", true},
-          {"t0", sampler.t0()},
-          {"t1", sampler.t1()},
-          {"frame_rate", sampler.frame_rate()},
-          {"times", std::move(rounded)},
-          {"bodies", std::move(names)},
-          {"poses", std::move(frames)},
-          {"velocities", std::move(velocities)},
-          {"forces", std::move(forces)},
-          {"trajectories", std::move(trajectories)},
-          {"framing",
-           {{"center", Vec(framing.center)},
-            {"radius", Round(framing.radius)},
-            {"eye_distance", (camera.eye - camera.target).norm() / framing.radius},
-            {"tan_half_fov", std::tan(camera.fov_y / 2)}}},
-          {"views", session ? Views(sampler, *session, times) : json::array()},
-          {"camera", CameraJson(render::MakeCamera(*sampler.SceneView(), 1, 1))}};
+  json data = {{"ok", true},
+               {"t0", sampler.t0()},
+               {"t1", sampler.t1()},
+               {"frame_rate", sampler.frame_rate()},
+               {"times", std::move(rounded)},
+               {"bodies", std::move(names)},
+               {"poses", std::move(frames)},
+               {"velocities", std::move(velocities)},
+               {"forces", std::move(forces)},
+               {"trajectories", std::move(trajectories)},
+               {"framing",
+                {{"center", Vec(framing.center)},
+                 {"radius", Round(framing.radius)},
+                 {"eye_distance", (camera.eye - camera.target).norm() / framing.radius},
+                 {"tan_half_fov", std::tan(camera.fov_y / 2)}}},
+               {"views", session ? Views(sampler, *session, times) : json::array()},
+               {"camera", CameraJson(render::MakeCamera(*sampler.SceneView(), 1, 1))}};
+  AddOverlays(data, sampler, times, framing.radius);
+  return data;
 }
 
 json Refused(const std::string& why) { return {{"ok", false}, {"error", why}}; }
@@ -281,6 +327,7 @@ json PlayerData(const render::SceneSampler& sampler, const render::ViewState& vi
   data["times"] = times;
   data["poses"] = std::move(frames);
   data["camera"] = CameraJson(render::MakeCamera(view, 1, 1));
+  AddOverlays(data, sampler, times, view.radius);
   return data;
 }
 

@@ -18,6 +18,12 @@
 //                      (ω in world axes; differences of the poses over
 //                      1e-5 of the run),
 //                      forces: [[[fx fy fz] | null per scene force] per frame],
+//                      links: [[ax ay az bx by bz per link] per frame] (the
+//                      two attachment points in world coordinates),
+//                      arrows: [[bx by bz fx fy fz per scene force] per
+//                      frame] (point of application and world vector; zero
+//                      where the force cannot be evaluated), arrow_length
+//                      (the longest arrow's drawn length, scene units),
 //                      trajectories: [{name, values: [[x y z] per frame]}],
 //                      framing: {center, radius, eye_distance, tan_half_fov}
 //                      (asgard render's default view and camera),
@@ -31,8 +37,9 @@
 //
 // PlayerData is what an exported page needs to play the motion in WebGL
 // (the medium's "player" command, host-shim/html.cc): meshes' bodies and
-// lights as above, the poses at `rate` frames per second over the run (at
-// most kMaxPlayerFrames), and the camera `view` gives for a square picture
+// lights as above, the poses, links and arrows (as poses has them) at
+// `rate` frames per second over the run (at most kMaxPlayerFrames), and the
+// camera `view` gives for a square picture
 // {eye, target, up, tan_half_fov}.
 #pragma once
 

@@ -26,6 +26,39 @@ await browserTest(asgard, scene, 'editor', async ({ check, url, context }) => {
     check(await waitFor(() => p.evaluate(() => window.asgard.ready && window.asgard.graphical.bodyNames().includes('b3'))),
       `the ${name} tab shows the pendulum's bodies`);
   await a.screenshot({ path: join(outDir, '1-open.png') });
+
+  // The pose stream's overlays (what the document view's WebGL player draws):
+  // each link's ends on its bodies as the poses place them (rods centred on
+  // their centres of mass, so `-offset1 {5 0 0}` is p + q·(5 0 0)), and each
+  // force's arrow at its body's centre, (0, -10·mass, 0) = (0, -100, 0).
+  const stream = await a.evaluate(() => {
+    const p = window.asgard.graphical.poses;
+    return { names: p.bodies, poses: p.poses, links: p.links, arrows: p.arrows, length: p.arrow_length, n: p.times.length };
+  });
+  const rotate = (q, v) => {  // q = [x y z w]
+    const u = q.slice(0, 3), c = (a, b) => [a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]];
+    const t = c(u, v).map((x) => 2 * x), ut = c(u, t);
+    return v.map((x, k) => x + q[3] * t[k] + ut[k]);
+  };
+  const bodyPoint = (f, name, offset) => {
+    const k = stream.names.indexOf(name), pose = stream.poses[f].slice(7 * k, 7 * k + 7);
+    return rotate(pose.slice(3), offset).map((x, i) => x + pose[i]);
+  };
+  let worst = 0;
+  const far = (u, v) => { worst = Math.max(worst, ...u.map((x, i) => Math.abs(x - v[i]))); };
+  for (const f of [0, Math.floor(stream.n / 2), stream.n - 1]) {
+    const [l1, l2] = [stream.links[f].slice(0, 6), stream.links[f].slice(6, 12)];
+    far(l1.slice(0, 3), bodyPoint(f, 'b1', [5, 0, 0]));
+    far(l1.slice(3), [0, 0, 0]);
+    far(l2.slice(0, 3), bodyPoint(f, 'b2', [5, 0, 0]));
+    far(l2.slice(3), bodyPoint(f, 'b1', [-5, 0, 0]));
+    far(stream.arrows[f].slice(0, 3), bodyPoint(f, 'b1', [0, 0, 0]));
+    far(stream.arrows[f].slice(3, 6), [0, -100, 0]);
+    far(stream.arrows[f].slice(9), [0, -100, 0]);
+  }
+  check(stream.links.length === stream.n && stream.links.every((l) => l.length === 12) && stream.arrows.every((l) => l.length === 12) &&
+    stream.length > 0 && worst < 1e-4,
+  `the pose stream has both links' ends and both forces' arrows in every frame, where the poses put them (worst ${worst.toExponential(1)})`);
   const original = b3Pos((await viewerTexts(a))[0]);
   check(original === '10.1 -17 0', `b3 starts at -init_pos {${original}}`);
   const startPos = await a.evaluate(() => window.asgard.graphical.bodyPosition('b3'));

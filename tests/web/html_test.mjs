@@ -3,12 +3,13 @@
 // Chromium the WebGL canvas draws the bodies where the pre-rendered frames
 // have them (the same camera), a body's pixels move between two times, a
 // drag turns the view, play advances the time, and a browser without WebGL
-// plays the frames.  Prints the sizes of the three --html modes.
+// plays the frames; on samples/two-animations.ens the links and the force are
+// drawn.  Prints the sizes of the three --html modes.
 // Usage: node html_test.mjs DOCHOST OUT/memo.ens OUT
 import { spawnSync } from 'node:child_process';
 import { statSync, writeFileSync } from 'node:fs';
 import { join } from 'node:path';
-import { pathToFileURL } from 'node:url';
+import { fileURLToPath, pathToFileURL } from 'node:url';
 import { checker, launchBrowser, sleep, waitFor } from './common.mjs';
 
 const [dochost, doc, outDir] = process.argv.slice(2);
@@ -146,6 +147,57 @@ try {
   await sleep(500);
   const frameNow = await plain.evaluate(() => Number(document.querySelector('#anim-1').dataset.frame));
   check(frameNow > 3, `without WebGL play shows the frames (frame ${frameNow})`);
+
+  // Links and forces (samples/two-animations.ens): the dumbbell's force is
+  // an arrow, the three balls' links are lines to the points above them.
+  // Along each, the canvas has the overlay's own colour (asgard render's:
+  // link rgb(26, 140, 51), force rgb(204, 26, 26), drawn flat), and 8 px to
+  // the side it has not.
+  const two = join(outDir, 'two-animations.html');
+  const sample = fileURLToPath(new URL('../../samples/two-animations.ens', import.meta.url));
+  const r = spawnSync(dochost, ['convert', sample,
+    '-o', two, '--html', 'webgl-poster', '--quiet'], { encoding: 'utf8' });
+  check(r.status === 0, `dochost convert two-animations.ens exits 0 ${r.stderr || ''}`);
+  const page2 = await context.newPage();
+  page2.on('pageerror', (e) => errors.push(String(e)));
+  await page2.goto(pathToFileURL(two).href);
+  await waitFor(() => page2.evaluate(() => ['#anim-1', '#anim-2'].every((id) => document.querySelector(id)?.dataset.state === 'paused')),
+    'the two animations are set up');
+  for (const [id, kind, rgb, count] of [['anim-1', 'arrows', [204, 26, 26], 1], ['anim-2', 'links', [26, 140, 51], 3]]) {
+    const seen = await page2.evaluate(({ id, kind, rgb }) => {
+      const fig = document.getElementById(id);
+      fig.asgard.showTime(0.1);
+      const segments = fig.asgard.webgl.overlays()[kind];
+      const gl = fig.querySelector('canvas.asgard-webgl');
+      const c = document.createElement('canvas');
+      c.width = gl.width; c.height = gl.height;
+      const ctx = c.getContext('2d');
+      ctx.drawImage(gl, 0, 0);
+      const k = gl.width / gl.offsetWidth;  // CSS to device pixels
+      // Whether a pixel within 1 of (x, y) CSS px has the colour.
+      const near = (x, y) => {
+        const d = ctx.getImageData(Math.round(x * k) - 1, Math.round(y * k) - 1, 3, 3).data;
+        for (let i = 0; i < d.length; i += 4)
+          if (Math.abs(d[i] - rgb[0]) <= 20 && Math.abs(d[i + 1] - rgb[1]) <= 20 && Math.abs(d[i + 2] - rgb[2]) <= 20) return true;
+        return false;
+      };
+      return segments.map(([ax, ay, bx, by]) => {
+        const len = Math.hypot(bx - ax, by - ay), nx = -(by - ay) / len, ny = (bx - ax) / len;
+        let on = 0, off = 0;
+        for (let i = 1; i <= 9; ++i) {
+          const x = ax + (bx - ax) * (0.1 + 0.08 * i), y = ay + (by - ay) * (0.1 + 0.08 * i);
+          if (near(x, y)) ++on;
+          if (near(x + 8 * nx, y + 8 * ny) || near(x - 8 * nx, y - 8 * ny)) ++off;
+        }
+        return { len, on, off, down: by - ay };
+      });
+    }, { id, kind, rgb });
+    writeFileSync(join(outDir, `two-${id}.png`), await page2.locator(`figure#${id}`).screenshot());
+    check(seen.length === count && seen.every((x) => x.len > 15 && x.on === 9 && x.off === 0),
+      `${id}: ${count} ${kind} drawn along their projected ends: ${seen.map((x) => `${x.len.toFixed(0)} px long, ${x.on}/9 on, ${x.off}/9 beside`).join('; ')}`);
+    if (kind === 'arrows') check(seen[0]?.down > 0, 'the dumbbell\'s force (down) points down the screen');
+  }
+  check(errors.length === 0, `no script errors on the page with links and forces ${errors.join('; ')}`);
 } catch (e) {
   check(false, `unexpected: ${e.stack || e}`);
 } finally {

@@ -13,7 +13,16 @@
 // [{directional, position, direction, color, intensity}], bodies: [{name,
 // pieces: [{color, sphere: [cx cy cz r]} | {color, v: base64 float32 xyz,
 // i: base64 uint16 or uint32 (i32: true)}], pose: [x y z qx qy qz qw] |
-// track: k}], poses: base64 float32, n frames × tracks × 7}.
+// track: k}], poses: base64 float32, n frames × tracks × 7, links: base64
+// float32, n frames × links × [ax ay az bx by bz] (the attachment points),
+// arrows: base64 float32, n frames × forces × [bx by bz fx fy fz] (point of
+// application and force), arrow_length: the longest force's drawn length}.
+//
+// Links are drawn as lines between their two ends and forces as arrows from
+// their points of application (the colours of asgard render's overlays), over
+// the bodies, with the ends interpolated linearly between frames as the
+// bodies' positions are.  The longest force of the whole motion is drawn
+// arrow_length long, the others in proportion.
 
 const VERTEX = `
 attribute vec3 position; attribute vec3 normal;
@@ -40,6 +49,12 @@ void main() {
   }
   gl_FragColor = vec4(min(color * sum + shine, vec3(1.0)), 1.0);
 }`;
+
+// Overlays (links, force arrows): flat-coloured triangles whose vertices are
+// given in clip coordinates, worked out on the CPU at each draw.
+const FLAT_VERTEX = 'attribute vec4 clip; void main() { gl_Position = clip; }';
+const FLAT_FRAGMENT = 'precision mediump float; uniform vec3 color; void main() { gl_FragColor = vec4(color, 1.0); }';
+const LINK_COLOR = [0.1, 0.55, 0.2], FORCE_COLOR = [0.8, 0.1, 0.1];
 
 function bytes(base64) {
   const s = atob(base64);
@@ -117,14 +132,14 @@ function hullMesh(vertices, triangles) {
   return { pos, nor };
 }
 
-function program(gl) {
+function program(gl, vertex = VERTEX, fragment = FRAGMENT) {
   const shader = (type, src) => {
     const s = gl.createShader(type);
     gl.shaderSource(s, src);
     gl.compileShader(s);
     return gl.getShaderParameter(s, gl.COMPILE_STATUS) ? s : null;
   };
-  const vs = shader(gl.VERTEX_SHADER, VERTEX), fs = shader(gl.FRAGMENT_SHADER, FRAGMENT);
+  const vs = shader(gl.VERTEX_SHADER, vertex), fs = shader(gl.FRAGMENT_SHADER, fragment);
   if (!vs || !fs) return null;
   const p = gl.createProgram();
   gl.attachShader(p, vs);
@@ -154,7 +169,10 @@ export function createPlayer(figure, fallback, data) {
   let gl = null;
   try { gl = canvas.getContext('webgl', { antialias: true, preserveDrawingBuffer: true }); } catch { gl = null; }
   const prog = gl && program(gl);
-  if (!prog) return null;
+  const flat = prog && program(gl, FLAT_VERTEX, FLAT_FRAGMENT);
+  if (!prog || !flat) return null;
+  const flatColor = gl.getUniformLocation(flat, 'color'), aClip = gl.getAttribLocation(flat, 'clip');
+  const overlayBuffer = gl.createBuffer();
   const loc = (n) => gl.getUniformLocation(prog, n);
   const u = { model: loc('model'), viewProj: loc('viewProj'), color: loc('color'), ambient: loc('ambient'), eye: loc('eye'),
     count: loc('count'), lightPos: loc('lightPos'), lightColor: loc('lightColor') };
@@ -163,6 +181,7 @@ export function createPlayer(figure, fallback, data) {
   // The scene (replaced by setScene when the motion changes): meshes in
   // body coordinates, the poses per frame and the lights.
   let bodies = [], poses = new Float32Array(0), tracks = 0, times = null;
+  let links = new Float32Array(0), arrows = new Float32Array(0), longest = 0, arrowLength = 0;
   const lightPos = new Float32Array(16), lightColor = new Float32Array(12);
   let count = 0, ambient = [0.5, 0.5, 0.5];
   function load(d) {
@@ -182,6 +201,13 @@ export function createPlayer(figure, fallback, data) {
     poses = floats(d.poses);
     tracks = bodies.reduce((n, b) => Math.max(n, b.track === undefined ? 0 : b.track + 1), 0);
     times = d.times && d.times.length === d.n ? d.times : null;  // uneven frame times
+    links = floats(d.links);
+    arrows = floats(d.arrows);
+    if (links.length % (6 * d.n)) links = new Float32Array(0);
+    if (arrows.length % (6 * d.n)) arrows = new Float32Array(0);
+    longest = 0;
+    for (let k = 0; k + 5 < arrows.length; k += 6) longest = Math.max(longest, Math.hypot(arrows[k + 3], arrows[k + 4], arrows[k + 5]));
+    arrowLength = Number(d.arrow_length) || 0;
     // Lights as the editor's viewer has them: the scene's, or a sky and a sun.
     const lights = (d.lights && d.lights.length ? d.lights : null);
     lightPos.fill(0);
@@ -223,11 +249,8 @@ export function createPlayer(figure, fallback, data) {
     return multiply(proj, view);
   }
 
-  // A body's pose at time t: its fixed pose, or its track interpolated
-  // between the two frames around t (positions linearly, rotations by a
-  // normalized linear mix along the shorter arc).
-  function poseAt(b, t) {
-    if (b.track === undefined) return { p: b.pose.slice(0, 3), q: b.pose.slice(3, 7) };
+  // The frames i and j around time t and the fraction s of the way from i to j.
+  function frameAt(t) {
     const n = data.n, span = data.t1 - data.t0;
     let i, j, s;
     if (times) {  // the frame before t (by bisection) and the one after
@@ -239,6 +262,15 @@ export function createPlayer(figure, fallback, data) {
       const x = n > 1 && span > 0 ? Math.min(Math.max((t - data.t0) / span, 0), 1) * (n - 1) : 0;
       i = Math.min(Math.floor(x), n - 1); j = Math.min(i + 1, n - 1); s = x - i;
     }
+    return { i, j, s };
+  }
+
+  // A body's pose at time t: its fixed pose, or its track interpolated
+  // between the two frames around t (positions linearly, rotations by a
+  // normalized linear mix along the shorter arc).
+  function poseAt(b, t) {
+    if (b.track === undefined) return { p: b.pose.slice(0, 3), q: b.pose.slice(3, 7) };
+    const { i, j, s } = frameAt(t);
     const at = (f, k) => poses[(f * tracks + b.track) * 7 + k];
     const p = [0, 1, 2].map((k) => at(i, k) * (1 - s) + at(j, k) * s);
     const sign = [3, 4, 5, 6].reduce((acc, k) => acc + at(i, k) * at(j, k), 0) < 0 ? -1 : 1;
@@ -246,6 +278,66 @@ export function createPlayer(figure, fallback, data) {
     const len = Math.hypot(...q) || 1;
     q = q.map((v) => v / len);
     return { p, q };
+  }
+
+  // The overlays at time t in world coordinates: links [[a, b]] and force
+  // arrows [[base, tip]] (zero forces left out), interpolated between frames.
+  function overlaysAt(t) {
+    const { i, j, s } = frameAt(t);
+    const segments = (list) => {
+      const per = list.length / data.n, out = [];
+      for (let e = 0; e < per; e += 6) {
+        const v = [0, 1, 2, 3, 4, 5].map((c) => list[i * per + e + c] * (1 - s) + list[j * per + e + c] * s);
+        out.push([v.slice(0, 3), v.slice(3, 6)]);
+      }
+      return out;
+    };
+    const arrowsNow = longest > 0 && arrowLength > 0 ? segments(arrows).filter(([, f]) => Math.hypot(...f) > 1e-9 * longest)
+      .map(([base, f]) => [base, add(base, scale(f, arrowLength / longest))]) : [];
+    return { links: segments(links), arrows: arrowsNow };
+  }
+
+  // Clip coordinates of world point p under the matrix m.
+  const clipOf = (m, p) => [0, 1, 2, 3].map((r) => m[r] * p[0] + m[4 + r] * p[1] + m[8 + r] * p[2] + m[12 + r]);
+
+  // Triangles (clip coordinates, 4 numbers a vertex) of a band `w` device
+  // pixels wide from a to b, and of an arrow head at b when `head` > 0
+  // (its length in device pixels); nothing when an end is behind the eye.
+  function band(m, a, b, w, head, out) {
+    const ca = clipOf(m, a), cb = clipOf(m, b);
+    if (ca[3] <= 1e-6 || cb[3] <= 1e-6) return;
+    const hw = canvas.width / 2, hh = canvas.height / 2;
+    const pa = [(ca[0] / ca[3]) * hw, (ca[1] / ca[3]) * hh], pb = [(cb[0] / cb[3]) * hw, (cb[1] / cb[3]) * hh];
+    const len = Math.hypot(pb[0] - pa[0], pb[1] - pa[1]);
+    if (len < 1e-6) return;
+    const d = [(pb[0] - pa[0]) / len, (pb[1] - pa[1]) / len], n = [-d[1], d[0]];
+    // A point `along` pixels past the end c (clip cc) and `across` to the side.
+    const at = (cc, along, across) => [cc[0] + ((d[0] * along + n[0] * across) / hw) * cc[3],
+      cc[1] + ((d[1] * along + n[1] * across) / hh) * cc[3], cc[2], cc[3]];
+    const h = head > 0 ? Math.min(head, 0.4 * len) : 0;
+    const a0 = at(ca, 0, -w / 2), a1 = at(ca, 0, w / 2), b0 = at(cb, -h, -w / 2), b1 = at(cb, -h, w / 2);
+    out.push(...a0, ...a1, ...b1, ...a0, ...b1, ...b0);
+    if (h > 0) out.push(...cb, ...at(cb, -h, 0.45 * h), ...at(cb, -h, -0.45 * h));
+  }
+
+  function drawOverlays(m, t) {
+    const o = overlaysAt(t);
+    if (!o.links.length && !o.arrows.length) return;
+    const ratio = canvas.width / width;
+    gl.disable(gl.DEPTH_TEST);  // over the bodies, as asgard render draws them
+    gl.useProgram(flat);
+    gl.bindBuffer(gl.ARRAY_BUFFER, overlayBuffer);
+    gl.enableVertexAttribArray(aClip);
+    for (const [list, color, w, head] of [[o.links, LINK_COLOR, 2, 0], [o.arrows, FORCE_COLOR, 2.5, 12]]) {
+      const v = [];
+      for (const [a, b] of list) band(m, a, b, w * ratio, head * ratio, v);
+      if (!v.length) continue;
+      gl.bufferData(gl.ARRAY_BUFFER, new Float32Array(v), gl.DYNAMIC_DRAW);
+      gl.vertexAttribPointer(aClip, 4, gl.FLOAT, false, 16, 0);
+      gl.uniform3fv(flatColor, color);
+      gl.drawArrays(gl.TRIANGLES, 0, v.length / 4);
+    }
+    gl.disableVertexAttribArray(aClip);
   }
 
   let shown = data.t0;
@@ -256,7 +348,8 @@ export function createPlayer(figure, fallback, data) {
     gl.clear(gl.COLOR_BUFFER_BIT | gl.DEPTH_BUFFER_BIT);
     gl.enable(gl.DEPTH_TEST);
     gl.useProgram(prog);
-    gl.uniformMatrix4fv(u.viewProj, false, viewProj());
+    const m = viewProj();
+    gl.uniformMatrix4fv(u.viewProj, false, m);
     gl.uniform3fv(u.ambient, ambient);
     gl.uniform3fv(u.eye, cam.eye);
     gl.uniform1i(u.count, count);
@@ -275,17 +368,26 @@ export function createPlayer(figure, fallback, data) {
         gl.drawArrays(gl.TRIANGLES, 0, piece.count);
       }
     }
+    drawOverlays(m, t);
   }
 
   // Where a body's centre of mass is drawn at time t, in CSS pixels from
   // the canvas's top left (for tests and for readers of the page).
+  const toScreen = (m, p) => {
+    const c = clipOf(m, p);
+    return [((c[0] / c[3] + 1) / 2) * width, ((1 - c[1] / c[3]) / 2) * height];
+  };
   function project(name, t = shown) {
     const b = bodies.find((x) => x.name === name);
     if (!b) return null;
-    const { p } = poseAt(b, t);
-    const m = viewProj();
-    const c = [0, 1, 2, 3].map((r) => m[r] * p[0] + m[4 + r] * p[1] + m[8 + r] * p[2] + m[12 + r]);
-    return [((c[0] / c[3] + 1) / 2) * width, ((1 - c[1] / c[3]) / 2) * height];
+    return toScreen(viewProj(), poseAt(b, t).p);
+  }
+  // The links' ends and the force arrows' base and tip at time t, in CSS
+  // pixels as project gives them: {links: [[ax, ay, bx, by]], arrows: [...]}.
+  function overlays(t = shown) {
+    const m = viewProj(), o = overlaysAt(t);
+    const flatten = (list) => list.map(([a, b]) => [...toScreen(m, a), ...toScreen(m, b)]);
+    return { links: flatten(o.links), arrows: flatten(o.arrows) };
   }
 
   // Virtual trackball: a drag of the pointer by (dx, dy) pixels turns the
@@ -331,7 +433,7 @@ export function createPlayer(figure, fallback, data) {
     player.times = { t0: d.t0, t1: d.t1, n: d.n };
     draw(Math.min(Math.max(shown, d.t0), d.t1));
   }
-  const player = { canvas, draw, project, orbit, zoom, setScene, times: { t0: data.t0, t1: data.t1, n: data.n } };
+  const player = { canvas, draw, project, overlays, orbit, zoom, setScene, times: { t0: data.t0, t1: data.t1, n: data.n } };
   return player;
 }
 
