@@ -9,6 +9,7 @@
 
 #include "core/physics/equations.h"
 #include "core/physics/joints.h"
+#include "core/solver/explicit_pair.h"
 #include "core/solver/simulation.h"
 
 namespace asgard::solver {
@@ -60,27 +61,7 @@ constexpr double kRestMinGain = 4.0;
 // that cancellation's rounding, not motion.
 constexpr double kRestRounding = 64 * std::numeric_limits<double>::epsilon();
 
-// Dormand–Prince 5(4), FSAL, with its 4th-order continuous extension
-// (Dormand & Prince 1980; dense output coefficients of Hairer, Nørsett &
-// Wanner, Solving ODEs I, II.6).
 namespace dp {
-constexpr double c2 = 1.0 / 5, c3 = 3.0 / 10, c4 = 4.0 / 5, c5 = 8.0 / 9;
-constexpr double a21 = 1.0 / 5;
-constexpr double a31 = 3.0 / 40, a32 = 9.0 / 40;
-constexpr double a41 = 44.0 / 45, a42 = -56.0 / 15, a43 = 32.0 / 9;
-constexpr double a51 = 19372.0 / 6561, a52 = -25360.0 / 2187, a53 = 64448.0 / 6561,
-                 a54 = -212.0 / 729;
-constexpr double a61 = 9017.0 / 3168, a62 = -355.0 / 33, a63 = 46732.0 / 5247, a64 = 49.0 / 176,
-                 a65 = -5103.0 / 18656;
-constexpr double a71 = 35.0 / 384, a73 = 500.0 / 1113, a74 = 125.0 / 192, a75 = -2187.0 / 6784,
-                 a76 = 11.0 / 84;
-// error = 5th − 4th order solution
-constexpr double e1 = 71.0 / 57600, e3 = -71.0 / 16695, e4 = 71.0 / 1920, e5 = -17253.0 / 339200,
-                 e6 = 22.0 / 525, e7 = -1.0 / 40;
-// bubble of the continuous extension
-constexpr double d1 = -12715105075.0 / 11282082432, d3 = 87487479700.0 / 32700410799,
-                 d4 = -10690763975.0 / 1880347072, d5 = 701980252875.0 / 199316789632,
-                 d6 = -1453857185.0 / 822651844, d7 = 69997945.0 / 29380423;
 // PI step control (Gustafsson): h_new = h · safety · err^−α · err_prev^β.
 constexpr double kBeta = 0.04, kAlpha = 0.2 - 0.75 * kBeta, kSafety = 0.9;
 constexpr double kMinFactor = 0.2, kMaxFactor = 10.0;
@@ -687,38 +668,40 @@ bool Component::TryStep(double h, bool landing, Attempt& out) {
   return true;
 }
 
-// One Dormand–Prince step from the last sample to t_end.  Stages reuse the
-// sample's rate (FSAL); the last stage's rate becomes the new sample's.
+// One step of the explicit pair from the last sample to t_end.  Stages reuse
+// the sample's rate (FSAL); the last stage's rate becomes the new sample's.
 bool Component::TryExplicitStep(const Mode& m, double t_end, bool landing, Attempt& out) {
   const int k = wave_.size() - 1;
   const size_t n = vars_.size();
   const double t = wave_.time(k);
   const double h = t_end - t;
   const double* x = wave_.x(k);
+  const ExplicitPair& p =
+      sim_.options().pair == SolverOptions::Pair::kTsitouras ? kTsitouras : kDormandPrince;
   std::copy(wave_.f(k), wave_.f(k) + n, k_[0].begin());
-  const double* k1 = k_[0].data();
-  double *k2 = k_[1].data(), *k3 = k_[2].data(), *k4 = k_[3].data(), *k5 = k_[4].data(),
-         *k6 = k_[5].data(), *k7 = k_[6].data();
-  using namespace dp;
-  for (size_t j = 0; j < n; ++j) y_[j] = x[j] + h * a21 * k1[j];
-  EvalF(m, t + c2 * h, y_.data(), k2, Side::kLeft, false);
-  for (size_t j = 0; j < n; ++j) y_[j] = x[j] + h * (a31 * k1[j] + a32 * k2[j]);
-  EvalF(m, t + c3 * h, y_.data(), k3, Side::kLeft, false);
-  for (size_t j = 0; j < n; ++j) y_[j] = x[j] + h * (a41 * k1[j] + a42 * k2[j] + a43 * k3[j]);
-  EvalF(m, t + c4 * h, y_.data(), k4, Side::kLeft, false);
-  for (size_t j = 0; j < n; ++j)
-    y_[j] = x[j] + h * (a51 * k1[j] + a52 * k2[j] + a53 * k3[j] + a54 * k4[j]);
-  EvalF(m, t + c5 * h, y_.data(), k5, Side::kLeft, false);
-  for (size_t j = 0; j < n; ++j)
-    yg_[j] = x[j] + h * (a61 * k1[j] + a62 * k2[j] + a63 * k3[j] + a64 * k4[j] + a65 * k5[j]);
-  EvalF(m, t_end, yg_.data(), k6, Side::kLeft, landing);
-  for (size_t j = 0; j < n; ++j)
-    y_[j] = x[j] + h * (a71 * k1[j] + a73 * k3[j] + a74 * k4[j] + a75 * k5[j] + a76 * k6[j]);
-  EvalF(m, t_end, y_.data(), k7, Side::kLeft, landing);
+  // Stage s's state: y_ (its 6th, at c = 1, in yg_ for the stiffness estimate).
+  for (int s = 1; s < 7; ++s) {
+    double* ys = s == 5 ? yg_.data() : y_.data();
+    const double* as = p.a[s];
+    for (size_t j = 0; j < n; ++j) {
+      double sum = 0.0;
+      for (int r = 0; r < s; ++r)
+        if (as[r] != 0.0) sum += as[r] * k_[r][j];
+      ys[j] = x[j] + h * sum;
+    }
+    const bool at_end = p.c[s] == 1.0;
+    EvalF(m, at_end ? t_end : t + p.c[s] * h, ys, k_[s].data(), Side::kLeft, at_end && landing);
+  }
+  const double *k6 = k_[5].data(), *k7 = k_[6].data();
   double num = 0.0, den = 0.0;
   for (size_t j = 0; j < n; ++j) {
-    est_[j] = h * (e1 * k1[j] + e3 * k3[j] + e4 * k4[j] + e5 * k5[j] + e6 * k6[j] + e7 * k7[j]);
-    bubble_[j] = h * (d1 * k1[j] + d3 * k3[j] + d4 * k4[j] + d5 * k5[j] + d6 * k6[j] + d7 * k7[j]);
+    double est = 0.0, bubble = 0.0;
+    for (int r = 0; r < 7; ++r) {
+      if (p.e[r] != 0.0) est += p.e[r] * k_[r][j];
+      if (p.d[r] != 0.0) bubble += p.d[r] * k_[r][j];
+    }
+    est_[j] = h * est;
+    bubble_[j] = h * bubble;
     num += (k7[j] - k6[j]) * (k7[j] - k6[j]);
     den += (y_[j] - yg_[j]) * (y_[j] - yg_[j]);
     rate_[j] = k7[j];

@@ -3,7 +3,8 @@
 //
 // Method (chosen per component, re-chosen during the run):
 //
-//   non-stiff ──▶ Dormand–Prince 5(4), explicit, FSAL; PI step control
+//   non-stiff ──▶ Dormand–Prince 5(4) or Tsitouras 5(4) (SolverOptions::pair),
+//                 explicit, FSAL; PI step control
 //                 (h_new = h · 0.9 err^−0.17 err_prev^0.04); its 4th-order
 //                 continuous extension goes into the waveform as a bubble
 //   stiff ─────▶ trapezoidal rule (TR)   y = x + h/2 (f(x) + f(y))   the seed's rule
@@ -107,6 +108,10 @@ struct SolverOptions {
   // trajectory or a hold prescribes still use the implicit path).
   enum class Method : uint8_t { kAuto, kTrapezoidal, kTrBdf2, kExplicit };
   Method method = Method::kAuto;
+  // The explicit pair: Dormand–Prince 5(4) or Tsitouras 5(4) (smaller error
+  // constants at the same 7 stages, FSAL, 4th-order dense output).
+  enum class Pair : uint8_t { kDormandPrince, kTsitouras };
+  Pair pair = Pair::kDormandPrince;
   int dense_limit = 40;  // larger components use KLU
 };
 
@@ -114,7 +119,7 @@ struct Counters {
   long steps = 0;
   long rejected_steps = 0;
   long trbdf2_steps = 0;
-  long explicit_steps = 0;   // Dormand–Prince steps
+  long explicit_steps = 0;   // steps of the explicit pair
   long method_switches = 0;  // explicit ⇄ implicit decisions
   long rhs_evaluations = 0;
   long jacobian_evaluations = 0;
@@ -304,7 +309,7 @@ class Component {
   bool CheckFinite();
   // scratch
   std::vector<double> x_, y_, fy_, yg_, fg_, c_, r_, est_, rate_, rowsum_, pv_, pw_, gdot_;
-  std::vector<double> k_[7];  // Dormand–Prince stages
+  std::vector<double> k_[7];  // the explicit pair's stages
   std::vector<double> bubble_;
   std::vector<char> rest_rows_;  // RestSpan's rows
   SampleInfo next_info_;         // method state to store with the sample a step appends
