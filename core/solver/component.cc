@@ -6,6 +6,8 @@
 #include <cmath>
 #include <limits>
 #include <sstream>
+#include <type_traits>
+#include <utility>
 
 #include "core/physics/equations.h"
 #include "core/physics/joints.h"
@@ -125,10 +127,11 @@ Component::Component(Simulation& sim, int index, std::vector<int> vars)
       vars_(std::move(vars)),
       wave_(static_cast<int>(vars_.size())) {
   const size_t n = vars_.size();
-  for (auto* v :
-       {&x_, &y_, &fy_, &yg_, &fg_, &c_, &r_, &est_, &rate_, &rowsum_, &pv_, &pw_, &bubble_})
-    v->assign(n, 0.0);
-  for (auto& k : k_) k.assign(n, 0.0);
+  Scratch* const all[] = {&x_,    &y_,    &fy_,   &yg_,   &fg_,     &c_,    &r_,
+                          &est_,  &rate_, &pv_,   &pw_,   &bubble_, &k_[0], &k_[1],
+                          &k_[2], &k_[3], &k_[4], &k_[5], &k_[6]};
+  scratch_ = std::make_unique<double[]>(std::size(all) * n);
+  for (size_t i = 0; i < std::size(all); ++i) *all[i] = {scratch_.get() + i * n, n};
 }
 
 Component::~Component() = default;
@@ -190,18 +193,9 @@ void Component::Initialize() {
 void Component::StartSample() {
   const size_t n = vars_.size();
   for (size_t j = 0; j < n; ++j) x_[j] = sys_.variables[vars_[j]].initial;
-  std::vector<double> zero(n, 0.0);
   wave_.Resize(0);
-  wave_.Append(sys_.t0, x_.data(), zero.data(), SampleInfo{});
-  const long restarts = counters_.restarts;
-  Restart();
-  counters_.restarts = restarts;
-  // The restart sample replaces the provisional one.
-  const int last = wave_.size() - 1;
-  std::vector<double> x(wave_.x(last), wave_.x(last) + n), f(wave_.f(last), wave_.f(last) + n);
-  SampleInfo info = wave_.info(last);
-  wave_.Resize(0);
-  wave_.Append(sys_.t0, x.data(), f.data(), info);
+  const SampleInfo info = RestartSample(sys_.t0, x_.data(), false);
+  wave_.Append(sys_.t0, y_.data(), rate_.data(), info);
   // A state at rest (rates zero, see RestSpan) needs no method until something moves
   // it; the stiffness test then waits for the votes of the steps.
   const Mode& m = ModeAt(sys_.t0);
@@ -668,40 +662,66 @@ bool Component::TryStep(double h, bool landing, Attempt& out) {
   return true;
 }
 
-// One step of the explicit pair from the last sample to t_end.  Stages reuse
-// the sample's rate (FSAL); the last stage's rate becomes the new sample's.
+namespace {
+
+// w·v, or −0.0 (which adding leaves any sum as it is, so the compiler drops
+// it) where the weight w is zero.
+template <double W>
+inline double Term(double v) {
+  if constexpr (W == 0.0)
+    return -0.0;
+  else
+    return W * v;
+}
+
+// Σ_r w_r k_r[j] over the stages, left to right, with the weights known at
+// compile time (zero weights cost nothing).
+template <const double (&W)[7], size_t... R>
+inline double Combine(const double* const* k, size_t j, std::index_sequence<R...>) {
+  return (... + Term<W[R]>(k[R][j]));
+}
+
+}  // namespace
+
 bool Component::TryExplicitStep(const Mode& m, double t_end, bool landing, Attempt& out) {
+  return sim_.options().pair == SolverOptions::Pair::kTsitouras
+             ? TryExplicitStepWith<kTsitouras>(m, t_end, landing, out)
+             : TryExplicitStepWith<kDormandPrince>(m, t_end, landing, out);
+}
+
+// One step of the explicit pair P from the last sample to t_end.  Stages
+// reuse the sample's rate (FSAL); the last stage's rate becomes the new
+// sample's.
+template <const ExplicitPair& P>
+bool Component::TryExplicitStepWith(const Mode& m, double t_end, bool landing, Attempt& out) {
   const int k = wave_.size() - 1;
   const size_t n = vars_.size();
   const double t = wave_.time(k);
   const double h = t_end - t;
   const double* x = wave_.x(k);
-  const ExplicitPair& p =
-      sim_.options().pair == SolverOptions::Pair::kTsitouras ? kTsitouras : kDormandPrince;
   std::copy(wave_.f(k), wave_.f(k) + n, k_[0].begin());
-  // Stage s's state: y_ (its 6th, at c = 1, in yg_ for the stiffness estimate).
-  for (int s = 1; s < 7; ++s) {
-    double* ys = s == 5 ? yg_.data() : y_.data();
-    const double* as = p.a[s];
-    for (size_t j = 0; j < n; ++j) {
-      double sum = 0.0;
-      for (int r = 0; r < s; ++r)
-        if (as[r] != 0.0) sum += as[r] * k_[r][j];
-      ys[j] = x[j] + h * sum;
-    }
-    const bool at_end = p.c[s] == 1.0;
-    EvalF(m, at_end ? t_end : t + p.c[s] * h, ys, k_[s].data(), Side::kLeft, at_end && landing);
-  }
-  const double *k6 = k_[5].data(), *k7 = k_[6].data();
+  const double* const ks[7] = {k_[0].data(), k_[1].data(), k_[2].data(), k_[3].data(),
+                               k_[4].data(), k_[5].data(), k_[6].data()};
+  // Stage S's state: in y_ (the 6th's, at c = 1, in yg_ for the stiffness
+  // estimate); the 7th's is the 5th-order solution.
+  auto stage = [&]<int S>(std::integral_constant<int, S>) {
+    double* ys = S == 5 ? yg_.data() : y_.data();
+    for (size_t j = 0; j < n; ++j)
+      ys[j] = x[j] + h * Combine<P.a[S]>(ks, j, std::make_index_sequence<S>());
+    constexpr bool at_end = P.c[S] == 1.0;
+    EvalF(m, at_end ? t_end : t + P.c[S] * h, ys, k_[S].data(), Side::kLeft, at_end && landing);
+  };
+  stage(std::integral_constant<int, 1>());
+  stage(std::integral_constant<int, 2>());
+  stage(std::integral_constant<int, 3>());
+  stage(std::integral_constant<int, 4>());
+  stage(std::integral_constant<int, 5>());
+  stage(std::integral_constant<int, 6>());
+  const double *k6 = ks[5], *k7 = ks[6];
   double num = 0.0, den = 0.0;
   for (size_t j = 0; j < n; ++j) {
-    double est = 0.0, bubble = 0.0;
-    for (int r = 0; r < 7; ++r) {
-      if (p.e[r] != 0.0) est += p.e[r] * k_[r][j];
-      if (p.d[r] != 0.0) bubble += p.d[r] * k_[r][j];
-    }
-    est_[j] = h * est;
-    bubble_[j] = h * bubble;
+    est_[j] = h * Combine<P.e>(ks, j, std::make_index_sequence<7>());
+    bubble_[j] = h * Combine<P.d>(ks, j, std::make_index_sequence<7>());
     num += (k7[j] - k6[j]) * (k7[j] - k6[j]);
     den += (y_[j] - yg_[j]) * (y_[j] - yg_[j]);
     rate_[j] = k7[j];
@@ -918,13 +938,22 @@ bool Component::Step() {
   }
 }
 
-// Starts afresh at the last sample's time: applies jumps and prescribed
-// values, evaluates right-hand-limit rates, and appends a restart sample.
+// Starts afresh at the last sample's time: appends a restart sample
+// (RestartSample).
 void Component::Restart() {
   const int k = wave_.size() - 1;
   const double t = wave_.time(k);
+  const SampleInfo info = RestartSample(t, wave_.x(k), wave_.info(k).implicit);
+  wave_.Append(t, y_.data(), rate_.data(), info);
+  ++counters_.restarts;
+  jac_sample_ = -1;
+}
+
+// The restart sample at t from state x: applies jumps at t and prescribed
+// values, evaluates right-hand-limit rates; state in y_, rates in rate_.
+SampleInfo Component::RestartSample(double t, const double* x, bool implicit) {
   const size_t n = vars_.size();
-  std::copy(wave_.x(k), wave_.x(k) + n, y_.begin());
+  std::copy(x, x + n, y_.begin());
   bool jumped = false;
   for (const Jump& j : jumps_)
     if (j.t == t) {
@@ -950,10 +979,8 @@ void Component::Restart() {
   info.h_next = sim_.restart_step();
   info.restart = true;
   info.jumps_seen = jump_generation_;
-  info.implicit = wave_.info(k).implicit;
-  wave_.Append(t, y_.data(), rate_.data(), info);
-  ++counters_.restarts;
-  jac_sample_ = -1;
+  info.implicit = implicit;
+  return info;
 }
 
 bool Component::IsBreakpoint(double t) const {

@@ -90,6 +90,8 @@ class JointSolver;
 
 namespace asgard::solver {
 
+struct ExplicitPair;  // explicit_pair.h
+
 struct SolverOptions {
   double rtol = 1e-6;
   double atol = 1e-9;
@@ -245,6 +247,8 @@ class Component {
              double* rate, Side side);
   bool TryStep(double h, bool landing, Attempt& out);
   bool TryExplicitStep(const Mode& m, double h, bool landing, Attempt& out);
+  template <const ExplicitPair& P>
+  bool TryExplicitStepWith(const Mode& m, double h, bool landing, Attempt& out);
   bool UseImplicit(const Mode& m, const SampleInfo& info) const;
   // Spectral radius of ∂f/∂x (ODE rows) by power iteration on the Jacobian
   // last evaluated, or on difference quotients of f at the last sample.
@@ -256,6 +260,7 @@ class Component {
   // `rows`: test only these rows (the still rows of a ballistic mode).
   double RestSpan(const Mode& m, double h, const std::vector<int>* rows = nullptr);
   void Restart();
+  SampleInfo RestartSample(double t, const double* x, bool implicit);
   bool PendingRestart() const;
   double NextBreakpoint(double t) const;
   bool IsBreakpoint(double t) const;
@@ -307,10 +312,20 @@ class Component {
   // finite (an overflowing initial value, a force that divides by zero):
   // shrinking the step cannot help, and the message names the variable.
   bool CheckFinite();
-  // scratch
-  std::vector<double> x_, y_, fy_, yg_, fg_, c_, r_, est_, rate_, rowsum_, pv_, pw_, gdot_;
-  std::vector<double> k_[7];  // the explicit pair's stages
-  std::vector<double> bubble_;
+  // Scratch vectors of n values, all in one allocation (a component is set
+  // up for every idle body of a scene, so its set-up is kept small).
+  struct Scratch {
+    double* p = nullptr;
+    size_t n = 0;
+    double& operator[](size_t i) const { return p[i]; }
+    double* data() const { return p; }
+    double* begin() const { return p; }
+    double* end() const { return p + n; }
+  };
+  std::unique_ptr<double[]> scratch_;
+  Scratch x_, y_, fy_, yg_, fg_, c_, r_, est_, rate_, pv_, pw_, bubble_;
+  Scratch k_[7];  // the explicit pair's stages
+  std::vector<double> gdot_;
   std::vector<char> rest_rows_;  // RestSpan's rows
   SampleInfo next_info_;         // method state to store with the sample a step appends
 };
