@@ -92,10 +92,11 @@ Options:
   --out FILE        write body trajectories sampled at the frame rate
                     (simulator -frames, default 30 per second): .csv or .json
   --stats           print the components (their variables) and solver counters
-  --method M        auto (default: Dormand-Prince 5(4) where a component is not stiff,
-                    TR / TR-BDF2 where it is), dp5, tr, trbdf2
-  --pair P          the explicit pair: dp5 (Dormand-Prince 5(4), default) or
-                    tsit5 (Tsitouras 5(4))
+  --method M        auto (default: the explicit pair where a component is not stiff,
+                    TR / TR-BDF2 where it is), dp5 (always the explicit pair),
+                    tr, trbdf2
+  --pair P          the explicit pair: tsit5 (Tsitouras 5(4), default) or
+                    dp5 (Dormand-Prince 5(4))
   --single          solve all equations as one component (no partitioning)
   --sequential      run components to completion one after another
                     (no event-driven scheduling)

