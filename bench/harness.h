@@ -8,8 +8,11 @@
 #include <cstdio>
 #include <functional>
 #include <map>
+#include <optional>
 #include <string>
 #include <vector>
+
+#include "core/solver/component.h"
 
 namespace asgard::bench {
 
@@ -82,6 +85,9 @@ struct Config {
   int repeats = 5;  // median of this many runs
   std::string out_dir = "bench-out";
   double timeout = 120.0;  // per isolated case
+  // Asgard's explicit pair in the work-precision suites (--pair dp5|tsit5;
+  // default: the solver's).
+  std::optional<solver::SolverOptions::Pair> pair;
 };
 
 // Median CPU time of a case measured `first` seconds on its first run:

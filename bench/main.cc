@@ -1,6 +1,6 @@
 // asgard_bench: the benchmark suite (scripts/bench.sh runs it).
 //
-//   asgard_bench [--quick] [--out DIR] [--repeats N] [--timeout S] [SUITE...]
+//   asgard_bench [--quick] [--out DIR] [--repeats N] [--timeout S] [--pair dp5|tsit5] [SUITE...]
 //
 // Suites: workprec stiff fig57 fig511 skip stress contact articulated (default:
 // all).  Each writes CSV files into DIR (default bench-out); bench/report.py
@@ -37,9 +37,19 @@ int main(int argc, char** argv) {
       cfg.repeats = std::max(1, std::atoi(next().c_str()));
     } else if (a == "--timeout") {
       cfg.timeout = std::atof(next().c_str());
+    } else if (a == "--pair") {
+      const std::string v = next();
+      if (v != "dp5" && v != "tsit5") {
+        Log("--pair must be dp5 or tsit5");
+        return 2;
+      }
+      cfg.pair = v == "dp5" ? asgard::solver::SolverOptions::Pair::kDormandPrince
+                            : asgard::solver::SolverOptions::Pair::kTsitouras;
     } else if (a == "-h" || a == "--help") {
       std::printf(
-          "usage: asgard_bench [--quick] [--out DIR] [--repeats N] [--timeout S] [SUITE...]\n"
+          "usage: asgard_bench [--quick] [--out DIR] [--repeats N] [--timeout S] [--pair "
+          "dp5|tsit5]\n"
+          "                    [SUITE...]\n"
           "suites: workprec stiff fig57 fig511 skip stress contact articulated (default: "
           "all)\n");
       return 0;
@@ -57,7 +67,11 @@ int main(int argc, char** argv) {
     for (const auto& n : PeerNotes()) peers << n << "\n";
     std::ofstream mode(cfg.out_dir + "/mode.txt");
     mode << (cfg.quick ? "quick" : "full") << " repeats=" << cfg.repeats
-         << " timeout=" << cfg.timeout << "\n";
+         << " timeout=" << cfg.timeout;
+    if (cfg.pair)
+      mode << " pair="
+           << (*cfg.pair == asgard::solver::SolverOptions::Pair::kTsitouras ? "tsit5" : "dp5");
+    mode << "\n";
   }
   auto want = [&](const char* s) { return suites.empty() || suites.count(s) > 0; };
   if (want("workprec")) RunWorkPrecision(cfg);

@@ -152,6 +152,7 @@ void RunWorkPrecision(const Config& cfg) {
           [&]() {
             pipeline::RunOptions o;
             o.solver.rtol = tol, o.solver.atol = tol;
+            if (cfg.pair) o.solver.pair = *cfg.pair;
             o.use_scene_tolerances = false;
             o.collisions = s.collisions;
             AsgardRun r = RunAsgard(s.text, o, frames, setup);
@@ -246,6 +247,7 @@ void RunStiffSweep(const Config& cfg) {
               if (code == 0) {
                 pipeline::RunOptions o;
                 o.solver.rtol = tol, o.solver.atol = tol;
+                if (cfg.pair) o.solver.pair = *cfg.pair;
                 AsgardRun r = RunAsgard(s.text, o, frames, setup);
                 p.ok = r.ok;
                 if (!r.ok) return Encode(p);

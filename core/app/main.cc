@@ -2,8 +2,8 @@
 //
 //   asgard check FILE
 //   asgard simulate FILE [--until T] [--rtol R] [--atol A] [--out FILE.csv|FILE.json]
-//                        [--stats] [--method auto|dp5|tr|trbdf2] [--single] [--sequential]
-//                        [--no-collisions] [--quiet]
+//                        [--stats] [--method auto|dp5|tr|trbdf2] [--pair dp5|tsit5]
+//                        [--single] [--sequential] [--no-collisions] [--quiet]
 //   asgard edit FILE --set ELEMENT.PARAM=VALUE ... [-o OUT] [--list]
 //   asgard render FILE ... -o OUT       (render_cmd.cc)
 //   asgard export FILE ... -o OUT       (render_cmd.cc)
@@ -92,8 +92,11 @@ Options:
   --out FILE        write body trajectories sampled at the frame rate
                     (simulator -frames, default 30 per second): .csv or .json
   --stats           print the components (their variables) and solver counters
-  --method M        auto (default: Dormand-Prince 5(4) where a component is not stiff,
-                    TR / TR-BDF2 where it is), dp5, tr, trbdf2
+  --method M        auto (default: the explicit pair where a component is not stiff,
+                    TR / TR-BDF2 where it is), dp5 (always the explicit pair),
+                    tr, trbdf2
+  --pair P          the explicit pair: tsit5 (Tsitouras 5(4), default) or
+                    dp5 (Dormand-Prince 5(4))
   --single          solve all equations as one component (no partitioning)
   --sequential      run components to completion one after another
                     (no event-driven scheduling)
@@ -395,6 +398,14 @@ int Simulate(const std::vector<std::string>& args) {
         opts.solver.method = asgard::solver::SolverOptions::Method::kExplicit;
       else
         return Usage("--method must be auto, dp5, tr or trbdf2", kSimulateHelp);
+    } else if (a == "--pair") {
+      auto v = value("--pair");
+      if (v == "dp5")
+        opts.solver.pair = asgard::solver::SolverOptions::Pair::kDormandPrince;
+      else if (v == "tsit5")
+        opts.solver.pair = asgard::solver::SolverOptions::Pair::kTsitouras;
+      else
+        return Usage("--pair must be dp5 or tsit5", kSimulateHelp);
     } else if (a == "--stats") {
       stats = true;
     } else if (a == "--quiet") {

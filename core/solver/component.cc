@@ -6,9 +6,12 @@
 #include <cmath>
 #include <limits>
 #include <sstream>
+#include <type_traits>
+#include <utility>
 
 #include "core/physics/equations.h"
 #include "core/physics/joints.h"
+#include "core/solver/explicit_pair.h"
 #include "core/solver/simulation.h"
 
 namespace asgard::solver {
@@ -60,27 +63,7 @@ constexpr double kRestMinGain = 4.0;
 // that cancellation's rounding, not motion.
 constexpr double kRestRounding = 64 * std::numeric_limits<double>::epsilon();
 
-// Dormand–Prince 5(4), FSAL, with its 4th-order continuous extension
-// (Dormand & Prince 1980; dense output coefficients of Hairer, Nørsett &
-// Wanner, Solving ODEs I, II.6).
 namespace dp {
-constexpr double c2 = 1.0 / 5, c3 = 3.0 / 10, c4 = 4.0 / 5, c5 = 8.0 / 9;
-constexpr double a21 = 1.0 / 5;
-constexpr double a31 = 3.0 / 40, a32 = 9.0 / 40;
-constexpr double a41 = 44.0 / 45, a42 = -56.0 / 15, a43 = 32.0 / 9;
-constexpr double a51 = 19372.0 / 6561, a52 = -25360.0 / 2187, a53 = 64448.0 / 6561,
-                 a54 = -212.0 / 729;
-constexpr double a61 = 9017.0 / 3168, a62 = -355.0 / 33, a63 = 46732.0 / 5247, a64 = 49.0 / 176,
-                 a65 = -5103.0 / 18656;
-constexpr double a71 = 35.0 / 384, a73 = 500.0 / 1113, a74 = 125.0 / 192, a75 = -2187.0 / 6784,
-                 a76 = 11.0 / 84;
-// error = 5th − 4th order solution
-constexpr double e1 = 71.0 / 57600, e3 = -71.0 / 16695, e4 = 71.0 / 1920, e5 = -17253.0 / 339200,
-                 e6 = 22.0 / 525, e7 = -1.0 / 40;
-// bubble of the continuous extension
-constexpr double d1 = -12715105075.0 / 11282082432, d3 = 87487479700.0 / 32700410799,
-                 d4 = -10690763975.0 / 1880347072, d5 = 701980252875.0 / 199316789632,
-                 d6 = -1453857185.0 / 822651844, d7 = 69997945.0 / 29380423;
 // PI step control (Gustafsson): h_new = h · safety · err^−α · err_prev^β.
 constexpr double kBeta = 0.04, kAlpha = 0.2 - 0.75 * kBeta, kSafety = 0.9;
 constexpr double kMinFactor = 0.2, kMaxFactor = 10.0;
@@ -144,10 +127,11 @@ Component::Component(Simulation& sim, int index, std::vector<int> vars)
       vars_(std::move(vars)),
       wave_(static_cast<int>(vars_.size())) {
   const size_t n = vars_.size();
-  for (auto* v :
-       {&x_, &y_, &fy_, &yg_, &fg_, &c_, &r_, &est_, &rate_, &rowsum_, &pv_, &pw_, &bubble_})
-    v->assign(n, 0.0);
-  for (auto& k : k_) k.assign(n, 0.0);
+  Scratch* const all[] = {&x_,    &y_,    &fy_,   &yg_,   &fg_,     &c_,    &r_,
+                          &est_,  &rate_, &pv_,   &pw_,   &bubble_, &k_[0], &k_[1],
+                          &k_[2], &k_[3], &k_[4], &k_[5], &k_[6]};
+  scratch_ = std::make_unique<double[]>(std::size(all) * n);
+  for (size_t i = 0; i < std::size(all); ++i) *all[i] = {scratch_.get() + i * n, n};
 }
 
 Component::~Component() = default;
@@ -209,18 +193,9 @@ void Component::Initialize() {
 void Component::StartSample() {
   const size_t n = vars_.size();
   for (size_t j = 0; j < n; ++j) x_[j] = sys_.variables[vars_[j]].initial;
-  std::vector<double> zero(n, 0.0);
   wave_.Resize(0);
-  wave_.Append(sys_.t0, x_.data(), zero.data(), SampleInfo{});
-  const long restarts = counters_.restarts;
-  Restart();
-  counters_.restarts = restarts;
-  // The restart sample replaces the provisional one.
-  const int last = wave_.size() - 1;
-  std::vector<double> x(wave_.x(last), wave_.x(last) + n), f(wave_.f(last), wave_.f(last) + n);
-  SampleInfo info = wave_.info(last);
-  wave_.Resize(0);
-  wave_.Append(sys_.t0, x.data(), f.data(), info);
+  const SampleInfo info = RestartSample(sys_.t0, x_.data(), false);
+  wave_.Append(sys_.t0, y_.data(), rate_.data(), info);
   // A state at rest (rates zero, see RestSpan) needs no method until something moves
   // it; the stiffness test then waits for the votes of the steps.
   const Mode& m = ModeAt(sys_.t0);
@@ -687,38 +662,66 @@ bool Component::TryStep(double h, bool landing, Attempt& out) {
   return true;
 }
 
-// One Dormand–Prince step from the last sample to t_end.  Stages reuse the
-// sample's rate (FSAL); the last stage's rate becomes the new sample's.
+namespace {
+
+// w·v, or −0.0 (which adding leaves any sum as it is, so the compiler drops
+// it) where the weight w is zero.
+template <double W>
+inline double Term(double v) {
+  if constexpr (W == 0.0)
+    return -0.0;
+  else
+    return W * v;
+}
+
+// Σ_r w_r k_r[j] over the stages, left to right, with the weights known at
+// compile time (zero weights cost nothing).
+template <const double (&W)[7], size_t... R>
+inline double Combine(const double* const* k, size_t j, std::index_sequence<R...>) {
+  return (... + Term<W[R]>(k[R][j]));
+}
+
+}  // namespace
+
 bool Component::TryExplicitStep(const Mode& m, double t_end, bool landing, Attempt& out) {
+  return sim_.options().pair == SolverOptions::Pair::kTsitouras
+             ? TryExplicitStepWith<kTsitouras>(m, t_end, landing, out)
+             : TryExplicitStepWith<kDormandPrince>(m, t_end, landing, out);
+}
+
+// One step of the explicit pair P from the last sample to t_end.  Stages
+// reuse the sample's rate (FSAL); the last stage's rate becomes the new
+// sample's.
+template <const ExplicitPair& P>
+bool Component::TryExplicitStepWith(const Mode& m, double t_end, bool landing, Attempt& out) {
   const int k = wave_.size() - 1;
   const size_t n = vars_.size();
   const double t = wave_.time(k);
   const double h = t_end - t;
   const double* x = wave_.x(k);
   std::copy(wave_.f(k), wave_.f(k) + n, k_[0].begin());
-  const double* k1 = k_[0].data();
-  double *k2 = k_[1].data(), *k3 = k_[2].data(), *k4 = k_[3].data(), *k5 = k_[4].data(),
-         *k6 = k_[5].data(), *k7 = k_[6].data();
-  using namespace dp;
-  for (size_t j = 0; j < n; ++j) y_[j] = x[j] + h * a21 * k1[j];
-  EvalF(m, t + c2 * h, y_.data(), k2, Side::kLeft, false);
-  for (size_t j = 0; j < n; ++j) y_[j] = x[j] + h * (a31 * k1[j] + a32 * k2[j]);
-  EvalF(m, t + c3 * h, y_.data(), k3, Side::kLeft, false);
-  for (size_t j = 0; j < n; ++j) y_[j] = x[j] + h * (a41 * k1[j] + a42 * k2[j] + a43 * k3[j]);
-  EvalF(m, t + c4 * h, y_.data(), k4, Side::kLeft, false);
-  for (size_t j = 0; j < n; ++j)
-    y_[j] = x[j] + h * (a51 * k1[j] + a52 * k2[j] + a53 * k3[j] + a54 * k4[j]);
-  EvalF(m, t + c5 * h, y_.data(), k5, Side::kLeft, false);
-  for (size_t j = 0; j < n; ++j)
-    yg_[j] = x[j] + h * (a61 * k1[j] + a62 * k2[j] + a63 * k3[j] + a64 * k4[j] + a65 * k5[j]);
-  EvalF(m, t_end, yg_.data(), k6, Side::kLeft, landing);
-  for (size_t j = 0; j < n; ++j)
-    y_[j] = x[j] + h * (a71 * k1[j] + a73 * k3[j] + a74 * k4[j] + a75 * k5[j] + a76 * k6[j]);
-  EvalF(m, t_end, y_.data(), k7, Side::kLeft, landing);
+  const double* const ks[7] = {k_[0].data(), k_[1].data(), k_[2].data(), k_[3].data(),
+                               k_[4].data(), k_[5].data(), k_[6].data()};
+  // Stage S's state: in y_ (the 6th's, at c = 1, in yg_ for the stiffness
+  // estimate); the 7th's is the 5th-order solution.
+  auto stage = [&]<int S>(std::integral_constant<int, S>) {
+    double* ys = S == 5 ? yg_.data() : y_.data();
+    for (size_t j = 0; j < n; ++j)
+      ys[j] = x[j] + h * Combine<P.a[S]>(ks, j, std::make_index_sequence<S>());
+    constexpr bool at_end = P.c[S] == 1.0;
+    EvalF(m, at_end ? t_end : t + P.c[S] * h, ys, k_[S].data(), Side::kLeft, at_end && landing);
+  };
+  stage(std::integral_constant<int, 1>());
+  stage(std::integral_constant<int, 2>());
+  stage(std::integral_constant<int, 3>());
+  stage(std::integral_constant<int, 4>());
+  stage(std::integral_constant<int, 5>());
+  stage(std::integral_constant<int, 6>());
+  const double *k6 = ks[5], *k7 = ks[6];
   double num = 0.0, den = 0.0;
   for (size_t j = 0; j < n; ++j) {
-    est_[j] = h * (e1 * k1[j] + e3 * k3[j] + e4 * k4[j] + e5 * k5[j] + e6 * k6[j] + e7 * k7[j]);
-    bubble_[j] = h * (d1 * k1[j] + d3 * k3[j] + d4 * k4[j] + d5 * k5[j] + d6 * k6[j] + d7 * k7[j]);
+    est_[j] = h * Combine<P.e>(ks, j, std::make_index_sequence<7>());
+    bubble_[j] = h * Combine<P.d>(ks, j, std::make_index_sequence<7>());
     num += (k7[j] - k6[j]) * (k7[j] - k6[j]);
     den += (y_[j] - yg_[j]) * (y_[j] - yg_[j]);
     rate_[j] = k7[j];
@@ -935,13 +938,22 @@ bool Component::Step() {
   }
 }
 
-// Starts afresh at the last sample's time: applies jumps and prescribed
-// values, evaluates right-hand-limit rates, and appends a restart sample.
+// Starts afresh at the last sample's time: appends a restart sample
+// (RestartSample).
 void Component::Restart() {
   const int k = wave_.size() - 1;
   const double t = wave_.time(k);
+  const SampleInfo info = RestartSample(t, wave_.x(k), wave_.info(k).implicit);
+  wave_.Append(t, y_.data(), rate_.data(), info);
+  ++counters_.restarts;
+  jac_sample_ = -1;
+}
+
+// The restart sample at t from state x: applies jumps at t and prescribed
+// values, evaluates right-hand-limit rates; state in y_, rates in rate_.
+SampleInfo Component::RestartSample(double t, const double* x, bool implicit) {
   const size_t n = vars_.size();
-  std::copy(wave_.x(k), wave_.x(k) + n, y_.begin());
+  std::copy(x, x + n, y_.begin());
   bool jumped = false;
   for (const Jump& j : jumps_)
     if (j.t == t) {
@@ -967,10 +979,8 @@ void Component::Restart() {
   info.h_next = sim_.restart_step();
   info.restart = true;
   info.jumps_seen = jump_generation_;
-  info.implicit = wave_.info(k).implicit;
-  wave_.Append(t, y_.data(), rate_.data(), info);
-  ++counters_.restarts;
-  jac_sample_ = -1;
+  info.implicit = implicit;
+  return info;
 }
 
 bool Component::IsBreakpoint(double t) const {

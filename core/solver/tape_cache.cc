@@ -14,9 +14,15 @@ uint64_t Mix(uint64_t h, uint64_t v) {
 
 }  // namespace
 
-int TapeCache::Lowest(const expr::Pool& pool, const std::vector<expr::NodeId>& outputs,
-                      bool& reads_time) {
-  reads_time = false;
+int TapeCache::Anchor(const expr::Pool& pool, const std::vector<expr::NodeId>& outputs) {
+  for (expr::NodeId id : outputs)
+    for (;;) {
+      const expr::Node& n = pool.node(id);
+      if (n.op == expr::Op::kVar) return n.index;
+      if (n.args.empty()) break;
+      id = n.args[0];
+    }
+  // No such path meets a variable: the lowest variable read, by a walk.
   if (mark_.size() < pool.size()) mark_.resize(pool.size(), 0);
   int lowest = -1;
   stack_.assign(outputs.begin(), outputs.end());
@@ -29,22 +35,40 @@ int TapeCache::Lowest(const expr::Pool& pool, const std::vector<expr::NodeId>& o
     touched_.push_back(id);
     const expr::Node& n = pool.node(id);
     if (n.op == expr::Op::kVar && (lowest < 0 || n.index < lowest)) lowest = n.index;
-    if (n.op == expr::Op::kTime || n.op == expr::Op::kExtern) reads_time = true;
     stack_.insert(stack_.end(), n.args.begin(), n.args.end());
   }
   for (expr::NodeId id : touched_) mark_[id] = 0;
   return lowest;
 }
 
+bool TapeCache::ReadsTime(const expr::Pool& pool, const std::vector<expr::NodeId>& outputs) {
+  if (mark_.size() < pool.size()) mark_.resize(pool.size(), 0);
+  bool reads_time = false;
+  stack_.assign(outputs.begin(), outputs.end());
+  touched_.clear();
+  while (!stack_.empty() && !reads_time) {
+    const expr::NodeId id = stack_.back();
+    stack_.pop_back();
+    if (mark_[id]) continue;
+    mark_[id] = 1;
+    touched_.push_back(id);
+    const expr::Node& n = pool.node(id);
+    if (n.op == expr::Op::kTime || n.op == expr::Op::kExtern) reads_time = true;
+    stack_.insert(stack_.end(), n.args.begin(), n.args.end());
+  }
+  for (expr::NodeId id : touched_) mark_[id] = 0;
+  return reads_time;
+}
+
 uint64_t TapeCache::Hash(const expr::Pool& pool, const std::vector<expr::NodeId>& outputs,
-                         int lowest) const {
+                         int anchor) const {
   uint64_t h = outputs.size();
   for (expr::NodeId id : outputs) {
     const expr::Node& n = pool.node(id);
     h = Mix(h, static_cast<uint64_t>(n.op));
     h = Mix(h, n.args.size());
     if (n.op == expr::Op::kConst) h = Mix(h, std::bit_cast<uint64_t>(n.value));
-    if (n.op == expr::Op::kVar) h = Mix(h, static_cast<uint64_t>(n.index - lowest));
+    if (n.op == expr::Op::kVar) h = Mix(h, static_cast<uint64_t>(n.index - anchor));
   }
   return h;
 }
@@ -80,19 +104,19 @@ bool TapeCache::Same(const expr::Pool& pool, const std::vector<expr::NodeId>& a,
 }
 
 TapeCache::Shared TapeCache::Get(const expr::Pool& pool, const std::vector<expr::NodeId>& outputs) {
-  bool reads_time = false;
-  const int lowest = Lowest(pool, outputs, reads_time);
-  auto& bucket = entries_[Hash(pool, outputs, lowest)];
+  const int anchor = Anchor(pool, outputs);
+  auto& bucket = entries_[Hash(pool, outputs, anchor)];
   for (const Entry& e : bucket) {
-    const int shift = lowest < 0 || e.lowest < 0 ? 0 : lowest - e.lowest;
-    if ((lowest < 0) != (e.lowest < 0) || shift < 0) continue;
+    const int shift = anchor < 0 || e.anchor < 0 ? 0 : anchor - e.anchor;
+    if ((anchor < 0) != (e.anchor < 0) || shift < 0) continue;
     if (!Same(pool, e.outputs, outputs, shift)) continue;
     ++shared_;
     return {e.tape, shift, e.reads_time};
   }
   auto tape = std::make_shared<const expr::Tape>(expr::Tape::Compile(pool, outputs));
+  const bool reads_time = ReadsTime(pool, outputs);
   ++compiled_;
-  if (bucket.size() < kCandidates) bucket.push_back({outputs, lowest, tape, reads_time});
+  if (bucket.size() < kCandidates) bucket.push_back({outputs, anchor, tape, reads_time});
   return {tape, 0, reads_time};
 }
 

@@ -11,9 +11,12 @@
 // kCandidates per hash, so a scene of many different equations with equal
 // hashes costs a bounded number of comparisons per component); a full
 // comparison of the two DAGs, memoized per node, confirms the match.  The
-// shift must not be negative: the tape's lowest variable plus the shift is
-// the component's own lowest variable, so the offset array stays inside the
-// value array.
+// shift is read off an anchor, the first variable on the path of first
+// operands from the first output that reaches one (a few nodes: for a
+// body's rates, ẋ = dx is one; else the lowest variable read), so a hit
+// walks a DAG only in the comparison.  The shift must not be negative: every variable the tape
+// reads plus the shift is one the component reads, so the offset array stays inside the value
+// array.
 #pragma once
 
 #include <cstdint>
@@ -41,21 +44,25 @@ class TapeCache {
  private:
   struct Entry {
     std::vector<expr::NodeId> outputs;
-    int lowest;  // lowest variable index read, or -1
+    int anchor;  // Anchor(outputs)
     std::shared_ptr<const expr::Tape> tape;
     bool reads_time;
   };
   static constexpr size_t kCandidates = 4;
-  // The lowest variable index any of `outputs` reads, or -1; sets
-  // `reads_time` when one of them depends on t.
-  int Lowest(const expr::Pool& pool, const std::vector<expr::NodeId>& outputs, bool& reads_time);
-  uint64_t Hash(const expr::Pool& pool, const std::vector<expr::NodeId>& outputs, int lowest) const;
+  // The index of the first variable met following first operands from each
+  // output in turn; when no such path meets one, the lowest variable read
+  // (a walk), or -1.  DAGs equal up to a shift have anchors that differ by
+  // the shift.
+  int Anchor(const expr::Pool& pool, const std::vector<expr::NodeId>& outputs);
+  // Whether one of `outputs` depends on t (Time or an extern).
+  bool ReadsTime(const expr::Pool& pool, const std::vector<expr::NodeId>& outputs);
+  uint64_t Hash(const expr::Pool& pool, const std::vector<expr::NodeId>& outputs, int anchor) const;
   bool Same(const expr::Pool& pool, const std::vector<expr::NodeId>& a,
             const std::vector<expr::NodeId>& b, int shift);
 
   std::unordered_map<uint64_t, std::vector<Entry>> entries_;
   // Scratch over pool nodes: per node of a compared DAG, its partner + 1
-  // (Same), or the last walk that visited it (Lowest).
+  // (Same), or 1 once visited (ReadsTime).
   std::vector<expr::NodeId> mark_;
   std::vector<expr::NodeId> touched_, stack_;
   std::vector<std::pair<expr::NodeId, expr::NodeId>> pairs_;
