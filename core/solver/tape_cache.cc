@@ -23,41 +23,39 @@ int TapeCache::Anchor(const expr::Pool& pool, const std::vector<expr::NodeId>& o
       id = n.args[0];
     }
   // No such path meets a variable: the lowest variable read, by a walk.
-  if (mark_.size() < pool.size()) mark_.resize(pool.size(), 0);
   int lowest = -1;
-  stack_.assign(outputs.begin(), outputs.end());
-  touched_.clear();
-  while (!stack_.empty()) {
-    const expr::NodeId id = stack_.back();
-    stack_.pop_back();
-    if (mark_[id]) continue;
-    mark_[id] = 1;
-    touched_.push_back(id);
-    const expr::Node& n = pool.node(id);
+  Walk(pool, outputs, [&](const expr::Node& n) {
     if (n.op == expr::Op::kVar && (lowest < 0 || n.index < lowest)) lowest = n.index;
-    stack_.insert(stack_.end(), n.args.begin(), n.args.end());
-  }
-  for (expr::NodeId id : touched_) mark_[id] = 0;
+    return false;
+  });
   return lowest;
 }
 
-bool TapeCache::ReadsTime(const expr::Pool& pool, const std::vector<expr::NodeId>& outputs) {
+template <class Visit>
+bool TapeCache::Walk(const expr::Pool& pool, const std::vector<expr::NodeId>& outputs,
+                     Visit visit) {
   if (mark_.size() < pool.size()) mark_.resize(pool.size(), 0);
-  bool reads_time = false;
+  bool stopped = false;
   stack_.assign(outputs.begin(), outputs.end());
   touched_.clear();
-  while (!stack_.empty() && !reads_time) {
+  while (!stack_.empty() && !stopped) {
     const expr::NodeId id = stack_.back();
     stack_.pop_back();
     if (mark_[id]) continue;
     mark_[id] = 1;
     touched_.push_back(id);
     const expr::Node& n = pool.node(id);
-    if (n.op == expr::Op::kTime || n.op == expr::Op::kExtern) reads_time = true;
+    stopped = visit(n);
     stack_.insert(stack_.end(), n.args.begin(), n.args.end());
   }
   for (expr::NodeId id : touched_) mark_[id] = 0;
-  return reads_time;
+  return stopped;
+}
+
+bool TapeCache::ReadsTime(const expr::Pool& pool, const std::vector<expr::NodeId>& outputs) {
+  return Walk(pool, outputs, [](const expr::Node& n) {
+    return n.op == expr::Op::kTime || n.op == expr::Op::kExtern;
+  });
 }
 
 uint64_t TapeCache::Hash(const expr::Pool& pool, const std::vector<expr::NodeId>& outputs,

@@ -56,6 +56,10 @@ class TapeCache {
   int Anchor(const expr::Pool& pool, const std::vector<expr::NodeId>& outputs);
   // Whether one of `outputs` depends on t (Time or an extern).
   bool ReadsTime(const expr::Pool& pool, const std::vector<expr::NodeId>& outputs);
+  // Visits each node reachable from `outputs` once, until `visit` returns
+  // true; whether it did.
+  template <class Visit>
+  bool Walk(const expr::Pool& pool, const std::vector<expr::NodeId>& outputs, Visit visit);
   uint64_t Hash(const expr::Pool& pool, const std::vector<expr::NodeId>& outputs, int anchor) const;
   bool Same(const expr::Pool& pool, const std::vector<expr::NodeId>& a,
             const std::vector<expr::NodeId>& b, int shift);
