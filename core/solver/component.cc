@@ -664,21 +664,40 @@ bool Component::TryStep(double h, bool landing, Attempt& out) {
 
 namespace {
 
+// Row R of P's weight table: the stage weights a[R] for R < 7, then the
+// error weights e (kErrRow) and the continuous extension's bubble d
+// (kBubbleRow).  Weights are read from P inside the template (not passed as
+// floating-point template arguments) so that every C++20 compiler we build
+// with, clang-14 included, accepts it.
+constexpr int kErrRow = 7;
+constexpr int kBubbleRow = 8;
+
+template <const ExplicitPair& P, int Row>
+constexpr double Weight(size_t r) {
+  if constexpr (Row == kErrRow)
+    return P.e[r];
+  else if constexpr (Row == kBubbleRow)
+    return P.d[r];
+  else
+    return P.a[Row][r];
+}
+
 // w·v, or −0.0 (which adding leaves any sum as it is, so the compiler drops
 // it) where the weight w is zero.
-template <double W>
+template <const ExplicitPair& P, int Row, size_t R>
 inline double Term(double v) {
-  if constexpr (W == 0.0)
+  constexpr double w = Weight<P, Row>(R);
+  if constexpr (w == 0.0)
     return -0.0;
   else
-    return W * v;
+    return w * v;
 }
 
 // Σ_r w_r k_r[j] over the stages, left to right, with the weights known at
 // compile time (zero weights cost nothing).
-template <const double (&W)[7], size_t... R>
+template <const ExplicitPair& P, int Row, size_t... R>
 inline double Combine(const double* const* k, size_t j, std::index_sequence<R...>) {
-  return (... + Term<W[R]>(k[R][j]));
+  return (... + Term<P, Row, R>(k[R][j]));
 }
 
 }  // namespace
@@ -707,7 +726,7 @@ bool Component::TryExplicitStepWith(const Mode& m, double t_end, bool landing, A
   auto stage = [&]<int S>(std::integral_constant<int, S>) {
     double* ys = S == 5 ? yg_.data() : y_.data();
     for (size_t j = 0; j < n; ++j)
-      ys[j] = x[j] + h * Combine<P.a[S]>(ks, j, std::make_index_sequence<S>());
+      ys[j] = x[j] + h * Combine<P, S>(ks, j, std::make_index_sequence<S>());
     constexpr bool at_end = P.c[S] == 1.0;
     EvalF(m, at_end ? t_end : t + P.c[S] * h, ys, k_[S].data(), Side::kLeft, at_end && landing);
   };
@@ -720,8 +739,8 @@ bool Component::TryExplicitStepWith(const Mode& m, double t_end, bool landing, A
   const double *k6 = ks[5], *k7 = ks[6];
   double num = 0.0, den = 0.0;
   for (size_t j = 0; j < n; ++j) {
-    est_[j] = h * Combine<P.e>(ks, j, std::make_index_sequence<7>());
-    bubble_[j] = h * Combine<P.d>(ks, j, std::make_index_sequence<7>());
+    est_[j] = h * Combine<P, kErrRow>(ks, j, std::make_index_sequence<7>());
+    bubble_[j] = h * Combine<P, kBubbleRow>(ks, j, std::make_index_sequence<7>());
     num += (k7[j] - k6[j]) * (k7[j] - k6[j]);
     den += (y_[j] - yg_[j]) * (y_[j] - yg_[j]);
     rate_[j] = k7[j];
