@@ -160,6 +160,12 @@ class Hub {
   // Worker thread: one request, restarting a dead slave once.
   SlaveAnswer Ask(const std::string& method, const json& params);
   json Call(const std::string& method, const json& params);
+  // Worker thread: the session's undo history as known here.  A change the
+  // session recorded (its text, and the parameter a drag edits: the steps of
+  // one drag are one entry, as core/session makes them), and an undo or
+  // redo that was done.
+  void Record(const std::string& key);
+  void Moved(int by);
   // Worker thread: simulate and fetch the motion; updates the last good scene.
   json Resimulate();
   json Open();
@@ -171,6 +177,13 @@ class Hub {
   net::io_context& io_;
   Animation def_;
   std::string text_;  // the session's text as last known here (survives a slave crash)
+  // The session's undo history as texts, history_[history_at_] == text_,
+  // and the parameter of the drag whose step is open (docs/editor-server.md,
+  // "Restarts"): a restarted slave is loaded with each text in turn and
+  // undone back to history_at_, so undo and redo survive it.
+  std::vector<std::string> history_;
+  size_t history_at_ = 0;
+  std::string open_key_;
   std::shared_ptr<SlaveChannel> slave_;
   bool loaded_ = false;
   json meshes_, poses_;  // the last good scene
@@ -287,16 +300,68 @@ void Hub::Broadcast(json event) {
   });
 }
 
+// At most this many texts of the history are kept for a restart (the
+// oldest steps are dropped first).
+constexpr size_t kMaxHistory = 100;
+
 bool Hub::Ensure(SlaveAnswer* failed) {
   if (slave_->running() && loaded_) return true;
   loaded_ = false;
-  SlaveAnswer a = slave_->Call("load", {{"text", text_}});
-  if (!a.ok) {
-    *failed = std::move(a);
-    return false;
+  // A new slave's session gets the history known here: each text loaded in
+  // turn (every load is one step), then undone back to the current one.
+  // Without a history that ends in the current text (none yet, or it went
+  // out of step with the slave's), the current text alone.
+  if (history_.empty() || history_at_ >= history_.size() || history_[history_at_] != text_) {
+    history_.assign(1, text_);
+    history_at_ = 0;
+  }
+  open_key_.clear();
+  for (const std::string& text : history_) {
+    SlaveAnswer a = slave_->Call("load", {{"text", text}});
+    if (!a.ok) {
+      *failed = std::move(a);
+      return false;
+    }
+  }
+  for (size_t k = history_.size() - 1; k > history_at_; --k) {
+    SlaveAnswer a = slave_->Call("undo", json::object());
+    if (!a.ok) {
+      *failed = std::move(a);
+      return false;
+    }
   }
   loaded_ = true;
   return true;
+}
+
+void Hub::Record(const std::string& key) {
+  const bool same_drag =
+      !key.empty() && key == open_key_ && history_at_ > 0 && history_at_ + 1 == history_.size();
+  if (same_drag) {
+    history_[history_at_] = text_;
+  } else {
+    history_.resize(std::min(history_at_ + 1, history_.size()));
+    history_.push_back(text_);
+    history_at_ = history_.size() - 1;
+    if (history_.size() > kMaxHistory) {
+      history_.erase(history_.begin());
+      --history_at_;
+    }
+  }
+  open_key_ = key;
+}
+
+void Hub::Moved(int by) {
+  open_key_.clear();
+  const long at = static_cast<long>(history_at_) + by;
+  if (at >= 0 && at < static_cast<long>(history_.size()) && history_[at] == text_) {
+    history_at_ = static_cast<size_t>(at);
+    return;
+  }
+  // Out of step (the oldest steps were dropped, or the slave changed
+  // without this server): from here on, the current text.
+  history_.assign(1, text_);
+  history_at_ = 0;
 }
 
 SlaveAnswer Hub::Ask(const std::string& method, const json& params) {
@@ -320,6 +385,7 @@ json Hub::Call(const std::string& method, const json& params) {
 }
 
 json Hub::Resimulate() {
+  open_key_.clear();  // a simulation ends a drag's step
   const SlaveAnswer sim = Ask("simulate", json::object());
   if (!sim.ok) {
     sim_error_ = sim.error;
@@ -371,6 +437,7 @@ json Hub::Handle(const std::string& method, const json& params,
                           : json{{"element", element}, {"param", param}, {"values", values}});
     text_ = r.value("text", text_);
     state_stale_ = true;
+    Record(element.dump() + '\0' + param.dump());
     Broadcast({{"event", "text"},
                {"text", text_},
                {"edits", r["edits"]},
@@ -387,6 +454,7 @@ json Hub::Handle(const std::string& method, const json& params,
     const json& arg = params.at(key);
     json r = Call(method, {{key, arg}});
     json out = after_text_change(json::array());
+    Record("");
     out["edits"] = r["edits"];
     if (method == "delete") out["removed"] = r.value("removed", json::array());
     return out;
@@ -395,7 +463,9 @@ json Hub::Handle(const std::string& method, const json& params,
     if (!params.contains("text") || !params["text"].is_string())
       throw std::runtime_error("update needs a text");
     json loaded = Call("load", {{"text", params["text"]}});
-    return after_text_change(loaded.value("changes", json::array()));
+    json out = after_text_change(loaded.value("changes", json::array()));
+    Record("");
+    return out;
   }
   if (method == "simulate") {
     json sim = Resimulate();
@@ -413,6 +483,7 @@ json Hub::Handle(const std::string& method, const json& params,
     json r = Call(method, json::object());
     json out = after_text_change(json::array());
     out["done"] = r.value("ok", false);
+    if (out["done"].get<bool>()) Moved(method == "undo" ? -1 : 1);
     return out;
   }
   if (method == "movie") return Movie(params);

@@ -75,9 +75,11 @@ try {
   // in WebGL from the pose stream (no picture fetched while playing) and
   // agree with the slave's picture on where the bodies are drawn; a second
   // rendition of the animation keeps in step on the shared clock; an edit
-  // made in another view reaches both (the `scene` event); Recompute and
-  // Handles go through the same slave; without WebGL the page shows the
-  // slave's pictures.
+  // made in another view reaches both (the `scene` event); Recompute goes
+  // through the same slave; Handles draws the editor's handles over the
+  // WebGL rendition (no picture fetched, even while playing) and a drag of
+  // one edits the session; without WebGL the page shows the slave's
+  // pictures (with Handles, its handles).
   if (existsSync('/usr/bin/chromium') && process.env.ASGARD_WEB_MODULES &&
       existsSync(join(process.env.ASGARD_WEB_MODULES, 'playwright-core/package.json'))) {
     const { context, close } = await launchBrowser();
@@ -170,18 +172,84 @@ try {
       await page.click(`${fig(0)} >> .recompute`);
       check(await waitFor(async () => (await page.textContent(`${fig(0)} >> .status`)).startsWith('2 bodies'), 'recompute'),
         `the status after Recompute: ${await page.textContent(`${fig(0)} >> .status`)}`);
-      // Handles: the slave's picture with the position handles drawn.
+      // Handles: the editor's handles over the WebGL rendition (no picture
+      // from the server, even while playing), draggable through the session.
+      const overlay = (k = 0) => `window.asgardDocument.animations.get(0).renditions[${k}].overlay`;
+      const handlesOf = (k = 0) => page.evaluate(`${overlay(k)} ? ${overlay(k)}.viewer.handleList() : []`);
+      const requestsBeforeHandles = frameRequests;
       await page.check(`${fig(0)} >> .handles`);
-      const plainFrame = (await frame(3)).bytes, handlesFrame = (await frame(3, 1)).bytes;
-      writeFileSync(join(outDir, 'frame-3.png'), plainFrame);
-      writeFileSync(join(outDir, 'frame-3-handles.png'), handlesFrame);
-      check(await waitFor(async () => (await renderer()) === 'picture' && (await page.evaluate(async () => {
-        const a = await (await fetch(document.querySelector('figure.rendition img').src)).arrayBuffer();
-        const b = await (await fetch('/frame?a=0&t=3&handles=1')).arrayBuffer();
-        return a.byteLength === b.byteLength && new Uint8Array(a).every((x, i) => x === new Uint8Array(b)[i]);
-      })), 'handles drawn'), 'Handles shows the rendition with the position handles (the slave\'s picture)');
-      check(!plainFrame.equals(handlesFrame), 'which differs from the picture without handles');
-      await page.screenshot({ path: join(outDir, '4-handles.png') });
+      check(await waitFor(async () => (await handlesOf()).some((h) => h.id === 'b3.init_pos' && h.shown), 'the handles'),
+        'Handles shows the handles over the rendition');
+      check((await renderer()) === 'webgl', `the rendition stays WebGL with Handles on (${await renderer()})`);
+      const kinds = [...new Set((await handlesOf()).filter((h) => h.shown).map((h) => h.kind))].sort();
+      check(['position', 'rotation', 'velocity'].every((k) => kinds.includes(k)), `the handles' kinds: ${kinds.join(', ')}`);
+      await page.locator(`${fig(0)} >> .time`).fill('0');
+      const b3 = (await handlesOf()).find((h) => h.id === 'b3.init_pos');
+      check(JSON.stringify(b3.value) === '[1,-2,0]', `b3's position handle holds the session's -init_pos (${JSON.stringify(b3.value)})`);
+      // The handle is drawn where the player draws b3 at t = 0 (its start).
+      const b3Drawn = await page.evaluate(() => {
+        const r = window.asgardDocument.animations.get(0).renditions[0];
+        const box = r.player.canvas.getBoundingClientRect(), p = r.player.project('b3', r.player.times.t0);
+        return { x: box.left + p[0], y: box.top + p[1] };
+      });
+      check(Math.hypot(b3Drawn.x - b3.x, b3Drawn.y - b3.y) < 1.5,
+        `b3's position handle is on b3 as the player draws it (${b3.x.toFixed(1)}, ${b3.y.toFixed(1)} vs ${b3Drawn.x.toFixed(1)}, ${b3Drawn.y.toFixed(1)})`);
+      await page.screenshot({ path: join(outDir, '4-handles.png'), clip: { x: 0, y: 150, width: 640, height: 330 } });
+      // Playing with the handles shown: every frame in WebGL, none fetched.
+      const drawnHandles = await drawn(0);
+      const playStart = Date.now();
+      await page.click(`${fig(0)} >> .play`);
+      check(await waitFor(async () => (await page.textContent(`${fig(0)} >> .play`)) === 'Play' && Date.now() - playStart > 500, 'the end', 10000),
+        'playback with handles runs to the end');
+      const handleFrames = (await drawn(0)) - drawnHandles;
+      check(handleFrames >= 20, `${handleFrames} frames drawn with handles while playing`);
+      check(frameRequests === requestsBeforeHandles, `no picture fetched from the server with handles shown (${frameRequests - requestsBeforeHandles})`);
+      // Drag b3's position handle 40 pixels right: the session's text changes by the drag.
+      await page.locator(`${fig(0)} >> .time`).fill('0');
+      const h0 = (await handlesOf()).find((h) => h.id === 'b3.init_pos');
+      const sceneEvents = other.events.filter((e) => e.event === 'scene').length;
+      await page.mouse.move(h0.x, h0.y);
+      await page.mouse.down();
+      for (let i = 1; i <= 8; ++i) { await page.mouse.move(h0.x + 5 * i, h0.y); await sleep(30); }
+      const during = await page.evaluate(() => {
+        const r = window.asgardDocument.animations.get(0).renditions[0];
+        const box = r.player.canvas.getBoundingClientRect(), p = r.player.project('b3');
+        return { x: box.left + p[0], y: box.top + p[1], label: r.figure.querySelector('.handle-label').textContent };
+      });
+      check(Math.hypot(during.x - (h0.x + 40), during.y - h0.y) < 2, `while dragging, the player draws b3 under the pointer (${during.x.toFixed(1)}, ${during.y.toFixed(1)})`);
+      check(/^b3 -init_pos \{/.test(during.label), `a label shows the value dragged: "${during.label}"`);
+      await page.mouse.up();
+      check(await waitFor(() => other.events.filter((e) => e.event === 'scene').length > sceneEvents, 'the re-simulation'),
+        'the drag\'s end re-simulates (another view hears the new motion)');
+      const textEvents = other.events.filter((e) => e.event === 'text' && e.element === 'b3' && e.param === 'init_pos');
+      check(textEvents.length >= 2, `the drag sent b3's -init_pos while dragging (${textEvents.length} text events)`);
+      const reread = await other.call('open');
+      const moved = /body b3 [^\n]*-init_pos \\?\{([^}\\]*)\\?\}/.exec(reread.result.state.text);
+      const value = moved ? moved[1].split(' ').map(Number) : null;
+      const h1 = (await handlesOf()).find((h) => h.id === 'b3.init_pos');
+      check(value && JSON.stringify(value) === JSON.stringify(h1.value), `the session's text has b3 -init_pos {${moved && moved[1]}} as the handle does`);
+      // The value is the one drawn under the pointer 40 pixels right of
+      // where the drag began (checked above, in the camera of the drag: the
+      // new motion may frame the picture anew, as without handles).
+      check(value && value[1] === -2 && value[0] !== 1 && during.label === `b3 -init_pos {${moved[1]}}`,
+        `the value is the one dragged to (the label said "${during.label}")`);
+      const b3After = await page.evaluate(() => {
+        const r = window.asgardDocument.animations.get(0).renditions[0];
+        const box = r.player.canvas.getBoundingClientRect(), p = r.player.project('b3', r.player.times.t0);
+        return { x: box.left + p[0], y: box.top + p[1] };
+      });
+      check(await waitFor(async () => {
+        const p = await page.evaluate(() => window.asgardDocument.animations.get(0).renditions[0].player.project('b3', 0));
+        const box = await page.evaluate(() => window.asgardDocument.animations.get(0).renditions[0].player.canvas.getBoundingClientRect().toJSON());
+        return Math.hypot(box.left + p[0] - h1.x, box.top + p[1] - h1.y) < 1.5;
+      }, 'the new motion'), `the new motion starts b3 at the handle (${b3After.x.toFixed(1)}, ${b3After.y.toFixed(1)})`);
+      const second = (await handlesOf(1)).length;
+      check(second === 0, `the second rendition (Handles off) made no handles (${second})`);
+      check(frameRequests === requestsBeforeHandles, `no picture fetched from the server through the drag (${frameRequests - requestsBeforeHandles})`);
+      await page.screenshot({ path: join(outDir, '5-handle-dragged.png'), clip: { x: 0, y: 150, width: 640, height: 330 } });
+      await page.uncheck(`${fig(0)} >> .handles`);
+      check(await waitFor(() => page.evaluate(() => document.querySelector('canvas.asgard-handles').style.display === 'none'), 'hidden'),
+        'unchecking Handles hides them');
       check(errors.length === 0, `no page errors (${errors.join('; ')})`);
 
       // Without WebGL the renditions are the slave's pictures.
@@ -197,7 +265,20 @@ try {
         const f = document.querySelector('figure.rendition');
         return f.dataset.renderer === 'picture' && Number(f.dataset.drawn) >= 1 && !f.querySelector('canvas');
       }), 'the picture fallback'), 'without WebGL the document view shows the slave\'s picture');
-      await plain.screenshot({ path: join(outDir, '5-no-webgl.png') });
+      await plain.screenshot({ path: join(outDir, '6-no-webgl.png') });
+      // There, Handles is the slave's picture with the position handles drawn.
+      const plainFrame = (await frame(3)).bytes, handlesFrame = (await frame(3, 1)).bytes;
+      writeFileSync(join(outDir, 'frame-3.png'), plainFrame);
+      writeFileSync(join(outDir, 'frame-3-handles.png'), handlesFrame);
+      check(!plainFrame.equals(handlesFrame), 'the slave\'s picture with handles differs from the one without');
+      await plain.locator('figure.rendition >> nth=0 >> .time').fill('1000');
+      await plain.check('figure.rendition >> nth=0 >> .handles');
+      check(await waitFor(() => plain.evaluate(async () => {
+        const a = await (await fetch(document.querySelector('figure.rendition img').src)).arrayBuffer();
+        const b = await (await fetch('/frame?a=0&t=3&handles=1')).arrayBuffer();
+        return a.byteLength === b.byteLength && new Uint8Array(a).every((x, i) => x === new Uint8Array(b)[i]);
+      }), 'handles drawn'), 'without WebGL, Handles shows the slave\'s picture with the position handles');
+      await plain.screenshot({ path: join(outDir, '7-no-webgl-handles.png') });
       other.ws.close();
     } finally {
       await close();

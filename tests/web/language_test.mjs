@@ -3,7 +3,12 @@
 // a read-only one says why on hover, the long point list of a trajectory
 // and the long literal of a shape are elided to a widget that expands on
 // click and folds again, and the highlight follows a literal a handle
-// rewrote.  Screenshots go to OUT_DIR.
+// rewrote.  Then, with two language viewers, typing not yet sent in viewer
+// A survives a drag in the graphical view and an Update from viewer B of
+// other lines (both merged into A's text), an overlapping change from B
+// marks A as diverged while keeping its typing, Undo in A takes back only
+// the typing, and "Take the session's text" ends the divergence.
+// Screenshots go to OUT_DIR.
 import { join } from 'node:path';
 import { browserTest, dragHandle, openEditor, waitFor } from './common.mjs';
 
@@ -63,4 +68,78 @@ await browserTest(asgard, scene, 'language viewer', async ({ check, url, context
   check(e.length === 2, 'and the lists are still elided');
   await page.screenshot({ path: join(outDir, '3-after-drag.png') });
   check(errors.length === 0, `no script errors in the page ${errors.join('; ')}`);
+
+  // Unsent typing and session changes made elsewhere.
+  const two = await context.newPage();
+  const errors2 = [];
+  two.on('pageerror', (err) => errors2.push(String(err)));
+  await two.goto(`${url}?viewers=2`);
+  check(await waitFor(() => two.evaluate(() => window.asgard.ready && window.asgard.languageViewers.length === 2), 'two viewers'),
+    'the editor opens with two language viewers');
+  const textOf = (i) => two.evaluate((k) => window.asgard.languageViewers[k].text(), i);
+  const session = () => two.evaluate(() => window.asgard.text);
+  const diverged = (i) => two.evaluate((k) => window.asgard.languageViewers[k].diverged(), i);
+  const lineOf = async (i, start) => (await textOf(i)).split('\n').find((l) => l.startsWith(start));
+  // Types at the end of the line that starts with `start` in viewer i, with the keyboard.
+  const typeAtEnd = async (i, start, text) => {
+    const n = (await textOf(i)).split('\n').findIndex((l) => l.startsWith(start));
+    await two.evaluate(([k, line]) => {
+      const v = window.asgard.languageViewers[k].view;
+      v.focus();
+      v.dispatch({ selection: { anchor: v.state.doc.line(line).to }, scrollIntoView: true });
+    }, [i, n + 1]);
+    await two.keyboard.type(text, { delay: 5 });
+  };
+  // A replacement in viewer i as typing (a CodeMirror input transaction), then its Update.
+  const editAndUpdate = async (i, from, to) => {
+    const before = await two.evaluate(() => window.asgard.stateCount);
+    await two.evaluate(([k, a, b]) => {
+      const v = window.asgard.languageViewers[k].view;
+      const at = v.state.doc.toString().indexOf(a);
+      v.dispatch({ changes: { from: at, to: at + a.length, insert: b }, userEvent: 'input.type' });
+    }, [i, from, to]);
+    await two.click(`.viewer[data-viewer="${i}"] .update`);
+    await waitFor(() => two.evaluate((c) => window.asgard.stateCount > c && !window.asgard.busy, before), 'the Update');
+  };
+  const typed = ' ;# typed in A';
+  await typeAtEnd(0, 'body anchor', typed);
+  check((await lineOf(0, 'body anchor')).endsWith(typed) && !(await session()).includes(typed), 'viewer A holds typing not sent');
+  const startPos = /body spinner [^\n]*-init_pos (\{[^}]*\})/.exec(await session())[1];
+  await dragHandle(two, 'spinner.init_pos', 0, -40);
+  const dragged = /body spinner [^\n]*-init_pos (\{[^}]*\})/.exec(await session())[1];
+  const a1 = await textOf(0);
+  check(dragged !== startPos && a1.includes(`-init_pos ${dragged}`) && a1.includes(typed),
+    `after a drag of spinner's position (${startPos} → ${dragged}) viewer A has both the drag and its typing`);
+  check((await textOf(1)) === (await session()), 'viewer B (no typing) shows the session\'s text');
+  check(!(await diverged(0)), 'A has not diverged (the edits do not overlap)');
+  await editAndUpdate(1, '-pos {0 4 4}', '-pos {0 5 4}');
+  const a2 = await textOf(0);
+  check((await session()).includes('-pos {0 5 4}') && a2.includes('-pos {0 5 4}') && a2.includes(typed) && a2.includes(`-init_pos ${dragged}`),
+    'an Update from viewer B of another line reaches A, whose typing stays');
+  check(a2 === (await session()).replace('-init_pos {-4 0 0}', `-init_pos {-4 0 0}${typed}`), 'A\'s text is the session\'s plus its typing, nothing else');
+  await two.screenshot({ path: join(outDir, '4-merged-typing.png') });
+
+  // The same line, different words: still merged.
+  await editAndUpdate(1, '-init_pos {-4 0 0}', '-init_pos {-4 1 0}');
+  check((await lineOf(0, 'body anchor')) === `body anchor -shape ball -init_pos {-4 1 0}${typed}`,
+    `a change from B in A's typed line but not where A typed is merged: "${await lineOf(0, 'body anchor')}"`);
+  // Overlapping: B appends where A typed.
+  await editAndUpdate(1, '-init_pos {-4 1 0}', '-init_pos {-4 1 0} ;# from B');
+  check((await lineOf(0, 'body anchor')).endsWith(typed) && !(await textOf(0)).includes('from B'), 'an overlapping change leaves A\'s typing as it was');
+  check(await diverged(0), 'and A says it has diverged');
+  const status = await two.locator('.viewer[data-viewer="0"] .diverged').textContent();
+  check(await two.locator('.viewer[data-viewer="0"] .diverged').isVisible() && /diverged.*line 9/.test(status), `A's status: "${status}"`);
+  await editAndUpdate(1, '-finish 2', '-finish 2.5');
+  check((await textOf(0)).includes('-finish 2.5') && (await diverged(0)), 'while diverged, changes elsewhere still reach A');
+  await two.screenshot({ path: join(outDir, '5-diverged.png') });
+
+  // Undo in A takes back its typing (only), then the session's text is there but for the divergence.
+  await two.evaluate(() => window.asgard.languageViewers[0].view.focus());
+  for (let k = 0; k < 10 && (await textOf(0)).includes(typed); ++k) await two.keyboard.press('Control+z');
+  const a3 = await textOf(0);
+  check(!a3.includes(typed) && a3.includes('-finish 2.5') && a3.includes(`-init_pos ${dragged}`), 'Undo in A removes its typing and keeps the session\'s changes');
+  await two.click('.viewer[data-viewer="0"] .take-session');
+  check((await textOf(0)) === (await session()) && !(await diverged(0)) && !(await two.locator('.viewer[data-viewer="0"] .diverged').isVisible()),
+    '"Take the session\'s text" shows the session\'s text and ends the divergence');
+  check(errors2.length === 0, `no script errors in the two-viewer page ${errors2.join('; ')}`);
 });

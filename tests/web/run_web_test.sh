@@ -9,11 +9,11 @@ HERE=$(cd "$(dirname "$0")" && pwd)
 if ! command -v node >/dev/null 2>&1; then
   echo "SKIP: node is not installed"; exit 77
 fi
-# server, docserve and restart need node alone (docserve and restart its
+# server, docserve, restart and history need node alone (all but server its
 # WebSocket: Node 20's --experimental-websocket).
 FLAGS=
-if [ "$WHICH" = docserve ] || [ "$WHICH" = restart ]; then FLAGS=--experimental-websocket; fi
-if [ "$WHICH" != server ] && [ "$WHICH" != docserve ] && [ "$WHICH" != restart ]; then
+case $WHICH in docserve|restart|history) FLAGS=--experimental-websocket ;; esac
+if [ "$WHICH" != server ] && [ -z "$FLAGS" ]; then
   if [ ! -x /usr/bin/chromium ]; then echo "SKIP: /usr/bin/chromium is not installed"; exit 77; fi
   if [ ! -f "$SOURCE/web/node_modules/playwright-core/package.json" ]; then
     echo "SKIP: playwright-core is not installed in web/node_modules (the build runs npm ci)"; exit 77

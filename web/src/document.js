@@ -3,11 +3,16 @@
 // page is a rendition of animation N with the host's toolbar.  It plays in
 // WebGL (player.js) from the meshes and poses the editor server streams
 // (the `open` answer and every `scene` event, as the editor's viewer gets
-// them), so playback needs no server round trip; where WebGL is missing —
-// and while the slave is down, or with Handles on — it shows the slave's
-// picture of the rendition (GET /frame).  Every rendition of one animation
-// follows one clock, so they stay in step.
+// them), so playback needs no server round trip.  Handles draws the
+// editor's handles over the WebGL rendition (overlay.js), from the session's
+// parameters this page's WebSocket hears (the `open` answer, `state` and
+// `text` events), and a drag edits the same session as the editor's views.
+// Where WebGL is missing, and while the slave is down, it shows the slave's
+// picture of the rendition (GET /frame; with its position handles when
+// Handles is on).  Every rendition of one animation follows one clock, so
+// they stay in step.
 import { Connection } from './connection.js';
+import { HandleOverlay } from './overlay.js';
 import { createPlayer } from './player.js';
 
 // The editor server's meshes and poses as the player takes them (plain
@@ -88,6 +93,7 @@ class Rendition {
     this.loop = q('.loop');
     this.playButton = q('.play');
     this.player = null;
+    this.overlay = null;  // the handles over the player (made when first shown)
     this.webgl = true;  // until the player cannot be made
     this.picture = false;  // showing the slave's picture instead of the player
     this.drawing = null;
@@ -114,10 +120,26 @@ class Rendition {
     }
   }
 
+  // The handles over the player, made from the animation's scene and
+  // session state.
+  handleOverlay() {
+    if (this.overlay || !this.player) return this.overlay;
+    const a = this.animation;
+    this.overlay = new HandleOverlay(this.player, {
+      drag: (element, param, values) => a.conn.call('set_parameter', { element, param, values }),
+      dragStart: () => { a.clock.pause(); a.clock.seek(a.clock.t0); },
+      dragEnd: () => a.recompute(),
+    });
+    if (a.state) this.overlay.setParameters(a.state);
+    if (a.scene0) this.overlay.setScene(a.scene0.meshes, a.scene0.poses);
+    return this.overlay;
+  }
+
   // The slave's picture (the fallback) while `on`, else the player.
   usePicture(on) {
     this.picture = on || !this.player;
     if (this.player) this.player.canvas.style.display = this.picture ? 'none' : '';
+    if (this.overlay && this.picture) this.overlay.show(false);
     this.img.style.display = this.picture ? '' : 'none';
     this.figure.dataset.renderer = this.picture ? 'picture' : 'webgl';
   }
@@ -129,9 +151,15 @@ class Rendition {
     this.label.textContent = `t = ${clock.t.toFixed(2)} s`;
     this.playButton.textContent = clock.playing ? 'Pause' : 'Play';
     this.figure.dataset.t = String(clock.t);
-    this.usePicture(this.animation.down || this.handles.checked);
+    // Handles: over the WebGL rendition; the slave's picture only without one.
+    this.usePicture(this.animation.down || (this.handles.checked && !this.player));
     if (this.picture) return this.drawPicture(clock.t);
     this.player.draw(clock.t);
+    if (this.handles.checked) {
+      const o = this.handleOverlay();
+      o.show(true);
+      o.seek(clock.t);
+    } else if (this.overlay) this.overlay.show(false);
     this.drawn();
   }
 
@@ -168,6 +196,8 @@ class Animation {
     this.clock = new Clock();
     this.renditions = [];
     this.data = null;
+    this.scene0 = null;  // the stream's {meshes, poses} (the handles' viewer takes them as they come)
+    this.state = null;  // the session's scene_state (text, parameters, elements)
     this.down = false;  // the slave died; the next action restarts it
     this.started = false;  // the `open` answer has come
     this.template = null;
@@ -197,13 +227,27 @@ class Animation {
   scene(meshes, poses) {
     this.down = false;
     this.data = playerData(meshes, poses);
-    for (const r of this.renditions) r.setScene(this.data);
+    this.scene0 = { meshes, poses };
+    for (const r of this.renditions) {
+      r.setScene(this.data);
+      if (r.overlay) r.overlay.setScene(meshes, poses);
+    }
     this.setStatus(statusOf(poses));
     this.clock.setInterval(poses.t0, poses.t1);
   }
 
   async start() {
     this.conn.on('scene', (m) => this.scene(m.meshes, m.poses));
+    // The session's parameters for the handles: every state, and each
+    // literal a drag (in any view) rewrites.
+    this.conn.on('state', (m) => {
+      this.state = m.state;
+      for (const r of this.renditions) if (r.overlay) r.overlay.setParameters(m.state);
+    });
+    this.conn.on('text', (m) => {
+      if (!Array.isArray(m.values)) return;
+      for (const r of this.renditions) if (r.overlay) r.overlay.parameterEdited(m.element, m.param, m.values);
+    });
     this.conn.on('error', (m) => {
       this.down = true;
       this.clock.seek(this.clock.t);  // the picture: the last frame or the poster
@@ -213,6 +257,7 @@ class Animation {
       await this.conn.open();
       const o = await this.conn.call('open', {});
       this.started = true;
+      if (o.state) this.state = o.state;
       if (o.meshes && o.poses && o.poses.times) this.scene(o.meshes, o.poses);
       else this.clock.seek(0);  // no motion: the slave's picture says why
     } catch (e) {

@@ -7,16 +7,24 @@
 // session's Undo and Redo — text and picture — except for typing not yet
 // sent with Update, which they undo and redo here first (CodeMirror's own
 // history holds only that typing: the session's changes are not added to it
-// and each one closes its group).  Errors are marked at
+// and each one closes its group).  A session change that arrives while this
+// viewer holds unsent typing is merged into it (merge.js): where the two do
+// not overlap both survive; where they do, the typing is kept and the viewer
+// says it has diverged, with a button that takes the session's text.
+// Errors are marked at
 // their spans and listed under the text.  Graphically editable literals are
 // highlighted, read-only ones say why on hover, long point lists are elided
 // (literals.js).
 import { EditorView, basicSetup } from 'codemirror';
-import { Prec, StateEffect, StateField, Transaction } from '@codemirror/state';
+import { Annotation, ChangeSet, Prec, StateEffect, StateField, Transaction } from '@codemirror/state';
 import { Decoration, keymap } from '@codemirror/view';
 import { isolateHistory, redo, undo } from '@codemirror/commands';
 import { setDiagnostics } from '@codemirror/lint';
 import { literalTooltips, literalsField, setLiterals } from './literals.js';
+import { mergeSession } from './merge.js';
+
+// Marks the transactions that carry the session's changes (not typing).
+const fromSession = Annotation.define();
 
 const setErrorLines = StateEffect.define();
 const errorLines = StateField.define({
@@ -32,6 +40,11 @@ const errorLines = StateField.define({
 export class LanguageViewer {
   constructor(parent, index, actions) {
     this.session = '';
+    // The session text this viewer's text is made from, and the typing
+    // since (a ChangeSet base → text; see merge.js).  base differs from
+    // session only while diverged.
+    this.base = '';
+    this.pending = ChangeSet.empty(0);
     this.parameters = [];
     this.expanded = new Set();  // element.param of elided lists shown in full
     this.literals = literalsField(this);
@@ -41,8 +54,8 @@ export class LanguageViewer {
     const bar = document.createElement('div');
     bar.className = 'bar';
     for (const [name, f] of [
-      ['Update', () => actions.update(this.view.state.doc.toString())],
-      ['Save', () => actions.save(this.view.state.doc.toString())],
+      ['Update', () => this.send(actions.update).catch(() => {})],  // the status says why
+      ['Save', () => this.send(actions.save).catch(() => {})],
       ['Revert', () => this.revert()],
     ]) {
       const b = document.createElement('button');
@@ -51,6 +64,19 @@ export class LanguageViewer {
       b.onclick = f;
       bar.appendChild(b);
     }
+    // Diverged: the typing overlaps a change made elsewhere.
+    this.divergence = document.createElement('span');
+    this.divergence.className = 'diverged';
+    this.divergence.style.cssText = 'display:none;color:#a40;flex-basis:100%';
+    bar.style.flexWrap = 'wrap';
+    const text = document.createElement('span');
+    const take = document.createElement('button');
+    take.className = 'take-session';
+    take.textContent = "Take the session's text";
+    take.onclick = () => this.revert();
+    this.divergence.append(text, ' ', take);
+    this.divergenceText = text;
+    bar.appendChild(this.divergence);
     root.appendChild(bar);
     this.errors = document.createElement('div');
     this.errors.className = 'errors';
@@ -63,10 +89,16 @@ export class LanguageViewer {
       { key: 'Mod-Shift-z', run: () => { this.redo(); return true; }, preventDefault: true },
     ]));
     // New typing ends what a redo could bring back.
+    // Every change that is not the session's is typing (undo and redo of
+    // it included): composed into `pending`.
     const typing = EditorView.updateListener.of((u) => {
-      for (const tr of u.transactions)
-        if (tr.docChanged && tr.annotation(Transaction.addToHistory) !== false && !tr.isUserEvent('undo') && !tr.isUserEvent('redo'))
+      for (const tr of u.transactions) {
+        if (!tr.docChanged || tr.annotation(fromSession)) continue;
+        this.pending = this.pending.compose(tr.changes);
+        if (tr.annotation(Transaction.addToHistory) !== false && !tr.isUserEvent('undo') && !tr.isUserEvent('redo'))
           this.localRedo = 0;
+      }
+      if (u.docChanged && this.text() === this.base) this.pending = ChangeSet.empty(this.base.length);
     });
     this.view = new EditorView({ doc: '', extensions: [history, basicSetup, typing, EditorView.lineWrapping, errorLines, this.literals, literalTooltips(this.literals)], parent: root });
     root.appendChild(this.errors);
@@ -93,35 +125,73 @@ export class LanguageViewer {
     return this.actions.redo();
   }
 
-  // Adopt the session's text (as a minimal change) and, when given, its
-  // diagnostics and parameters.
+  // Sends this viewer's text (Update, Save) with `action`.  Its typing is
+  // taken to be the session's from now on (a change arriving meanwhile is
+  // merged against it); if the action fails, the typing is pending again.
+  async send(action) {
+    const text = this.text();
+    const was = { base: this.base, pending: this.pending };
+    this.base = text;
+    this.pending = ChangeSet.empty(text.length);
+    try {
+      return await action(text);
+    } catch (e) {
+      if (this.base === text) {
+        this.base = was.base;
+        this.pending = was.pending.compose(this.pending);
+        this.showDivergence([]);
+      }
+      throw e;
+    }
+  }
+
+  // Adopt the session's text and, when given, its diagnostics and
+  // parameters.  Without typing the session's change replaces what differs;
+  // with typing it is merged in (merge.js).
   showSession(text, diagnostics, parameters) {
     const changed = text !== this.session;
     this.session = text;
-    const old = this.text();
     // The session's change is its own undo step, not CodeMirror's: not in
     // the local history, and no typing before or after joins its group.
-    const annotations = [Transaction.addToHistory.of(false), isolateHistory.of('full')];
-    if (old !== text) {
-      let a = 0;
-      while (a < old.length && a < text.length && old[a] === text[a]) ++a;
-      let b = 0;
-      while (b < old.length - a && b < text.length - a &&
-             old[old.length - 1 - b] === text[text.length - 1 - b]) ++b;
-      this.view.dispatch({
-        changes: { from: a, to: old.length - b, insert: text.slice(a, text.length - b) },
-        userEvent: 'input.session',
-        annotations,
-      });
-    } else if (changed) {
-      this.view.dispatch({ annotations });  // this viewer's typing, now the session's (Update)
+    const annotations = [Transaction.addToHistory.of(false), isolateHistory.of('full'), fromSession.of(true)];
+    let conflicts = [];
+    if (this.text() === text) {
+      // This viewer's typing, now the session's (Update), or no change.
+      this.base = text;
+      this.pending = ChangeSet.empty(text.length);
+      if (changed) this.view.dispatch({ annotations });
+    } else if (text !== this.base) {
+      const m = mergeSession(this.base, this.pending, text);
+      this.base = m.base;
+      this.pending = m.pending;
+      conflicts = m.conflicts;
+      if (!m.apply.empty) this.view.dispatch({ changes: m.apply, userEvent: 'input.session', annotations });
     }
+    this.showDivergence(conflicts);
     if (changed) this.localRedo = 0;
     if (diagnostics) this.mark(diagnostics);
     if (parameters) {
       this.parameters = parameters;
       this.markLiterals();
     }
+  }
+
+  // Whether this viewer's text has left out some of the session's changes
+  // (they overlapped its typing).
+  diverged() { return this.base !== this.session; }
+
+  // The status of a diverged viewer: the lines where the session's text
+  // differs under the typing (`conflicts` in the base's offsets, when known).
+  showDivergence(conflicts) {
+    const on = this.diverged();
+    this.root.dataset.diverged = on ? '1' : '';
+    this.divergence.style.display = on ? '' : 'none';
+    if (!on) return;
+    const doc = this.view.state.doc;
+    const at = [...new Set(conflicts.map((c) => doc.lineAt(Math.min(this.pending.mapPos(c.from), doc.length)).number))];
+    if (at.length) this.conflictLines = at;
+    const where = this.conflictLines && this.conflictLines.length ? ` (line ${this.conflictLines.join(', ')})` : '';
+    this.divergenceText.textContent = `⚠ diverged: your typing overlaps a change made elsewhere${where}; Update sends yours`;
   }
 
   // Highlights and elisions for the session's parameters; only while the
@@ -160,8 +230,12 @@ export class LanguageViewer {
     this.view.dispatch({ effects: EditorView.scrollIntoView(doc.line(Math.min(line, doc.lines)).from, { y: 'center' }) });
   }
 
+  // Drops the typing: the session's text, replacing what differs.
   revert() {
     this.localRedo = 0;
+    this.base = this.text();
+    this.pending = ChangeSet.empty(this.base.length);
+    this.conflictLines = null;
     this.showSession(this.session, null);
     this.markLiterals();
   }

@@ -340,6 +340,17 @@ export function createPlayer(figure, fallback, data) {
     gl.disableVertexAttribArray(aClip);
   }
 
+  // Bodies drawn at a given pose instead of their motion's (a handle being
+  // dragged over the rendition moves its body's start): name → [x y z qx qy qz qw].
+  const placed = new Map();
+  function place(name, pose) {
+    if (pose) placed.set(name, pose); else placed.delete(name);
+  }
+  function poseOf(b, t) {
+    const at = placed.get(b.name);
+    return at ? { p: at.slice(0, 3), q: at.slice(3, 7) } : poseAt(b, t);
+  }
+
   let shown = data.t0;
   function draw(t = shown) {
     shown = t;
@@ -356,7 +367,7 @@ export function createPlayer(figure, fallback, data) {
     gl.uniform4fv(u.lightPos, lightPos);
     gl.uniform3fv(u.lightColor, lightColor);
     for (const b of bodies) {
-      const { p, q } = poseAt(b, t);
+      const { p, q } = poseOf(b, t);
       gl.uniformMatrix4fv(u.model, false, poseMatrix(p, q));
       for (const piece of b.pieces) {
         gl.uniform3fv(u.color, piece.color);
@@ -380,7 +391,7 @@ export function createPlayer(figure, fallback, data) {
   function project(name, t = shown) {
     const b = bodies.find((x) => x.name === name);
     if (!b) return null;
-    return toScreen(viewProj(), poseAt(b, t).p);
+    return toScreen(viewProj(), poseOf(b, t).p);
   }
   // The links' ends and the force arrows' base and tip at time t, in CSS
   // pixels as project gives them: {links: [[ax, ay, bx, by]], arrows: [...]}.
@@ -418,7 +429,14 @@ export function createPlayer(figure, fallback, data) {
   });
   canvas.addEventListener('pointerup', () => { last = null; });
   canvas.addEventListener('wheel', (e) => { e.preventDefault(); zoom(Math.pow(1.0015, e.deltaY)); }, { passive: false });
-  canvas.addEventListener('dblclick', () => { cam = { ...home }; turned = false; draw(); });
+  function goHome() { cam = { ...home }; turned = false; draw(); }
+  canvas.addEventListener('dblclick', goHome);
+  // The camera as drawn: eye, target and up, the vertical field of view
+  // (radians), the near and far planes and the canvas's CSS size.
+  function camera() {
+    const d = Math.hypot(...sub(cam.target, cam.eye));
+    return { eye: cam.eye.slice(), target: cam.target.slice(), up: cam.up.slice(), fovY: fovY(), near: d / 50, far: d * 20, width, height };
+  }
 
   fallback.style.display = 'none';
   fallback.parentNode.insertBefore(canvas, fallback);
@@ -433,7 +451,8 @@ export function createPlayer(figure, fallback, data) {
     player.times = { t0: d.t0, t1: d.t1, n: d.n };
     draw(Math.min(Math.max(shown, d.t0), d.t1));
   }
-  const player = { canvas, draw, project, overlays, orbit, zoom, setScene, times: { t0: data.t0, t1: data.t1, n: data.n } };
+  const player = { canvas, draw, project, overlays, orbit, zoom, home: goHome, camera, place, setScene,
+    times: { t0: data.t0, t1: data.t1, n: data.n } };
   return player;
 }
 
