@@ -61,8 +61,16 @@ JointSolver::JointSolver(const EquationSystem& sys, std::vector<int> joints,
     }
     joints_.push_back(d);
   }
-  point_tape_ = expr::Tape::Compile(sys.pool, point_outputs);
+  // Points fixed in space (the common case: a pendulum's pivot) need no
+  // tape; their values are the constants themselves.
+  points_constant_ = std::all_of(point_outputs.begin(), point_outputs.end(),
+                                 [&](expr::NodeId e) { return sys.pool.IsConst(e); });
   point_values_.assign(point_outputs.size(), 0.0);
+  if (points_constant_)
+    for (size_t k = 0; k < point_outputs.size(); ++k)
+      point_values_[k] = sys.pool.node(point_outputs[k]).value;
+  else
+    point_tape_ = expr::Tape::Compile(sys.pool, point_outputs);
   const size_t n = joints_.size();
   rhs_.assign(n, Eigen::Vector3d::Zero());
   arm_a_.assign(n, Eigen::Vector3d::Zero());
@@ -83,6 +91,15 @@ int JointSolver::Slot(int i, int j) {
 // by minimum degree (ties: lowest index), and the fill it makes.
 void JointSolver::Symbolic() {
   const int n = static_cast<int>(joints_.size());
+  if (n == 1) {  // one joint (a pendulum): one pivot, no graph
+    slot_keys_.assign(1, {0, 0});
+    pivots_.assign(1, Pivot{0, 0, {}, {}, {}});
+    blocks_.assign(1, Eigen::Matrix3d::Zero());
+    coupling_.assign(1, Eigen::Matrix3d::Zero());
+    residual_.assign(1, Eigen::Vector3d::Zero());
+    dinv_.assign(1, Eigen::Matrix3d::Zero());
+    return;
+  }
   std::vector<std::set<int>> adj(n);
   for (int i = 0; i < n; ++i)
     for (int k = i + 1; k < n; ++k) {
@@ -161,7 +178,8 @@ void JointSolver::Prepare(double t, const double* values, const char* prescribed
   for (JointData& d : joints_)
     for (End* e : {&d.a, &d.b})
       if (e->body >= 0) e->arm_skew = Skew(bodies_[e->body].R * e->s);
-  if (!point_values_.empty()) point_tape_.Evaluate(t, values, point_values_.data(), externs);
+  if (!point_values_.empty() && !points_constant_)
+    point_tape_.Evaluate(t, values, point_values_.data(), externs);
 }
 
 void JointSolver::ProjectVelocities(double t, const double* values, double* state,

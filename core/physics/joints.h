@@ -125,7 +125,8 @@ class JointSolver {
   const EquationSystem& sys_;
   std::vector<BodyData> bodies_;
   std::vector<JointData> joints_;
-  expr::Tape point_tape_;
+  expr::Tape point_tape_;         // unused when points_constant_
+  bool points_constant_ = false;  // every joint point is a constant
   std::vector<double> point_values_;
   // block structure
   std::vector<std::vector<std::pair<int, int>>> shared_;  // per joint: (other joint, body)

@@ -281,14 +281,14 @@ std::unique_ptr<Component::Mode> Component::BuildMode(const std::string& key, do
       gdots.push_back(pool.Const(0.0));
     }
   }
-  m->outputs = outputs;
   m->f_tape = sim_.tapes().Get(pool, outputs);
   m->autonomous = points_autonomous_ && !m->f_tape.reads_time;
-  m->gdot_tape = sim_.tapes().Get(pool, gdots);
+  if (!gdots.empty()) m->gdot_tape = sim_.tapes().Get(pool, gdots);  // else never evaluated
   m->any_prescribed =
       std::any_of(m->prescribed.begin(), m->prescribed.end(), [](char p) { return p != 0; });
   if (m->autonomous && !m->any_prescribed && !joints_ && inputs_.empty())
     m->ballistic = BallisticRows(outputs, m->prescribed);
+  m->outputs = std::move(outputs);
   gdot_.resize(std::max(gdot_.size(), m->gdot_rows.size()));
   return m;
 }
@@ -974,11 +974,10 @@ SampleInfo Component::RestartSample(double t, const double* x, bool implicit) {
   const size_t n = vars_.size();
   std::copy(x, x + n, y_.begin());
   bool jumped = false;
-  for (const Jump& j : jumps_)
-    if (j.t == t) {
-      y_[j.local] = j.value;
-      jumped = true;
-    }
+  for (auto [j, end] = JumpsAt(t); j != end; ++j) {
+    y_[j->local] = j->value;
+    jumped = true;
+  }
   Mode& m = ModeAt(t);
   if (jumped && joints_) {
     // An impulse on a jointed body moves its whole group (joint impulses).
@@ -1004,7 +1003,8 @@ SampleInfo Component::RestartSample(double t, const double* x, bool implicit) {
 
 bool Component::IsBreakpoint(double t) const {
   if (std::binary_search(static_breakpoints_.begin(), static_breakpoints_.end(), t)) return true;
-  if (std::binary_search(dynamic_breakpoints_.begin(), dynamic_breakpoints_.end(), t)) return true;
+  if (std::binary_search(own_times_.begin(), own_times_.end(), t)) return true;
+  if (std::binary_search(inherited_.begin(), inherited_.end(), t)) return true;
   return false;
 }
 
@@ -1016,8 +1016,8 @@ bool Component::PendingRestart() const {
   // A restart sample is stale when a jump at its time came after it (an
   // impact at the very start, where the first sample is a restart).
   if (info.jumps_seen == jump_generation_) return false;
-  for (const Jump& j : jumps_)
-    if (j.t == wave_.time(k) && j.generation > info.jumps_seen) return true;
+  for (auto [j, end] = JumpsAt(wave_.time(k)); j != end; ++j)
+    if (j->generation > info.jumps_seen) return true;
   return false;
 }
 
@@ -1025,8 +1025,10 @@ double Component::NextBreakpoint(double t) const {
   double best = std::numeric_limits<double>::infinity();
   auto it = std::upper_bound(static_breakpoints_.begin(), static_breakpoints_.end(), t);
   if (it != static_breakpoints_.end()) best = *it;
-  auto jt = std::upper_bound(dynamic_breakpoints_.begin(), dynamic_breakpoints_.end(), t);
-  if (jt != dynamic_breakpoints_.end()) best = std::min(best, *jt);
+  for (const auto* times : {&own_times_, &inherited_}) {
+    auto jt = std::upper_bound(times->begin(), times->end(), t);
+    if (jt != times->end()) best = std::min(best, *jt);
+  }
   return best;
 }
 
@@ -1049,30 +1051,63 @@ void Component::CopyResults(const Component& from) {
   jumps_ = from.jumps_;
   jump_generation_ = from.jump_generation_;
   holds_ = from.holds_;
+  own_times_ = from.own_times_;
   last_mode_ = nullptr;
   jac_sample_ = -1;
+}
+
+// Jumps are kept in time order (ties in the order they were added), so the
+// jumps at t are one binary search away and a new jump, which is almost
+// always the latest (a change at t first forgets what follows t), is
+// appended.  The component's own event times are kept sorted alongside
+// (with repeats, so removing one occurrence leaves the others).
+std::pair<std::vector<Component::Jump>::const_iterator,
+          std::vector<Component::Jump>::const_iterator>
+Component::JumpsAt(double t) const {
+  auto lo =
+      std::partition_point(jumps_.begin(), jumps_.end(), [t](const Jump& j) { return j.t < t; });
+  auto hi = lo;
+  while (hi != jumps_.end() && hi->t == t) ++hi;
+  return {lo, hi};
+}
+
+void Component::AddTime(double t) {
+  own_times_.insert(std::upper_bound(own_times_.begin(), own_times_.end(), t), t);
+}
+
+void Component::RemoveTime(double t) {
+  auto it = std::lower_bound(own_times_.begin(), own_times_.end(), t);
+  if (it != own_times_.end() && *it == t) own_times_.erase(it);
 }
 
 void Component::AddJump(double t, int local, double value) {
   // A later jump of the same variable at the same time supersedes it.
   ++jump_generation_;
-  for (Jump& j : jumps_)
-    if (j.t == t && j.local == local) {
-      j.value = value;
-      j.generation = jump_generation_;
+  auto [lo, hi] = JumpsAt(t);
+  for (auto j = lo; j != hi; ++j)
+    if (j->local == local) {
+      Jump& same = jumps_[static_cast<size_t>(j - jumps_.cbegin())];
+      same.value = value;
+      same.generation = jump_generation_;
       return;
     }
-  jumps_.push_back({t, local, value, jump_generation_});
+  jumps_.insert(hi, {t, local, value, jump_generation_});
+  AddTime(t);
 }
 
 void Component::AddHold(double t, int local, double value) {
   holds_.push_back({t, std::numeric_limits<double>::infinity(), local, value});
+  AddTime(t);
   last_mode_ = nullptr;
 }
 
 void Component::ReleaseHold(double t, int local) {
   for (Hold& h : holds_)
-    if (h.local == local && h.from < t && t < h.to) h.to = t;
+    if (h.local == local && h.from < t && t < h.to) {
+      if (std::isfinite(h.to)) RemoveTime(h.to);
+      h.to = t;
+      AddTime(t);
+    }
   last_mode_ = nullptr;
 }
 
@@ -1084,31 +1119,32 @@ bool Component::Held(int local, double t) const {
 
 void Component::ForgetAfter(double t, bool strict) {
   auto after = [t, strict](double x) { return strict ? x >= t : x > t; };
-  std::erase_if(jumps_, [&](const Jump& j) { return after(j.t); });
+  // Every event time dropped here (a jump's, a hold's start or end) is after
+  // t, and every one kept is not: the sorted lists lose their tails.
+  jumps_.erase(std::partition_point(jumps_.begin(), jumps_.end(),
+                                    [&](const Jump& j) { return !after(j.t); }),
+               jumps_.end());
+  own_times_.erase(std::partition_point(own_times_.begin(), own_times_.end(),
+                                        [&](double x) { return !after(x); }),
+                   own_times_.end());
   std::erase_if(holds_, [&](const Hold& h) { return after(h.from); });
   for (Hold& h : holds_)
     if (after(h.to)) h.to = std::numeric_limits<double>::infinity();
   last_mode_ = nullptr;
 }
 
-std::vector<double> Component::EventTimes() const {
-  std::vector<double> times;
-  for (const Jump& j : jumps_) times.push_back(j.t);
-  for (const Hold& h : holds_) {
-    times.push_back(h.from);
-    if (std::isfinite(h.to)) times.push_back(h.to);
-  }
-  return times;
+void Component::BreakpointsInto(std::vector<double>& out) const {
+  out.insert(out.end(), own_times_.begin(), own_times_.end());
+  out.insert(out.end(), inherited_.begin(), inherited_.end());
 }
 
 void Component::SetDynamicBreakpoints(const std::vector<double>& upstream) {
-  // A long run accumulates thousands of events (every impact is a jump), and
-  // this is called at each: merge sorted runs instead of sorting them all.
-  // Jumps are added in time order (a change at t first forgets what follows
-  // t) and the inherited list is a concatenation of sorted lists, so the
-  // runs are found and merged in linear time in the usual case.
-  std::vector<double> times = EventTimes();
-  times.insert(times.end(), upstream.begin(), upstream.end());
+  // `upstream` is a concatenation of sorted lists (own and inherited times
+  // of each upstream component): merge the runs in linear time in the usual
+  // case rather than sorting.  The component's own times are kept sorted as
+  // events come and go, so a component with no upstream (a body on its own
+  // colliding thousands of times) pays nothing here.
+  std::vector<double> times = upstream;
   constexpr int kMaxRuns = 16;  // beyond this many runs a sort is cheaper
   int runs = 0;
   auto run_start = times.begin();
@@ -1119,7 +1155,7 @@ void Component::SetDynamicBreakpoints(const std::vector<double>& upstream) {
   }
   if (run_start != times.end()) std::sort(times.begin(), times.end());
   times.erase(std::unique(times.begin(), times.end()), times.end());
-  dynamic_breakpoints_ = std::move(times);
+  inherited_ = std::move(times);
 }
 
 std::string Component::Describe() const {

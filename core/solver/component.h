@@ -210,11 +210,13 @@ class Component {
   // Drops the events after t (with `strict`, at or after t): jumps, holds
   // starting then, and releases then.
   void ForgetAfter(double t, bool strict);
-  // Times of this component's own events.
-  std::vector<double> EventTimes() const;
-  // Own event times ∪ `upstream` (sorted, unique) become the dynamic breakpoints.
+  // The dynamic breakpoints are the times of this component's own events
+  // (kept up to date as they come and go) and `upstream`'s (the breakpoints
+  // of the components upstream, BreakpointsInto each; sorted runs).
   void SetDynamicBreakpoints(const std::vector<double>& upstream);
-  const std::vector<double>& dynamic_breakpoints() const { return dynamic_breakpoints_; }
+  // Appends the dynamic breakpoints (own, then inherited: two sorted runs,
+  // possibly with repeats) to `out`.
+  void BreakpointsInto(std::vector<double>& out) const;
 
  private:
   struct Mode;
@@ -281,14 +283,20 @@ class Component {
   std::vector<int> vars_;
   std::vector<int> inputs_;
   std::vector<double> static_breakpoints_;
-  std::vector<double> dynamic_breakpoints_;
+  std::vector<double> own_times_;  // own event times, sorted, with repeats
+  std::vector<double> inherited_;  // upstream components' breakpoints, sorted, unique
   struct Jump {
     double t;
     int local;
     double value;
     long generation;  // jump_generation_ when it was added or last changed
   };
-  std::vector<Jump> jumps_;
+  std::vector<Jump> jumps_;  // in time order, ties in the order added
+  // The jumps at time t: [first, last).
+  std::pair<std::vector<Jump>::const_iterator, std::vector<Jump>::const_iterator> JumpsAt(
+      double t) const;
+  void AddTime(double t);     // into own_times_
+  void RemoveTime(double t);  // one occurrence
   long jump_generation_ = 0;
   struct Hold {
     double from;

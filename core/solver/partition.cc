@@ -10,8 +10,8 @@ namespace {
 
 // Emits components in an order where each component follows every component
 // reachable from it along `reads` arcs, i.e. its dependencies.
-std::vector<std::vector<int>> Tarjan(const std::vector<std::vector<int>>& reads) {
-  const int n = static_cast<int>(reads.size());
+std::vector<std::vector<int>> Tarjan(const ReadGraph& reads) {
+  const int n = reads.size();
   std::vector<int> index(n, -1), low(n, 0);
   std::vector<char> on_stack(n, 0);
   std::vector<int> stack;
@@ -30,8 +30,8 @@ std::vector<std::vector<int>> Tarjan(const std::vector<std::vector<int>>& reads)
     on_stack[root] = 1;
     while (!calls.empty()) {
       Frame& f = calls.back();
-      if (f.next < reads[f.v].size()) {
-        const int w = reads[f.v][f.next++];
+      if (const auto arcs = reads.of(f.v); f.next < arcs.size()) {
+        const int w = arcs[f.next++];
         if (index[w] < 0) {
           index[w] = low[w] = counter++;
           stack.push_back(w);
@@ -63,8 +63,8 @@ std::vector<std::vector<int>> Tarjan(const std::vector<std::vector<int>>& reads)
 }
 
 // Upstream and downstream lists of each component, from the variables' reads.
-void LinkComponents(const std::vector<std::vector<int>>& reads, Partition& p) {
-  const int n = static_cast<int>(reads.size());
+void LinkComponents(const ReadGraph& reads, Partition& p) {
+  const int n = reads.size();
   p.component_of.assign(n, -1);
   for (size_t c = 0; c < p.components.size(); ++c)
     for (int v : p.components[c]) p.component_of[v] = static_cast<int>(c);
@@ -72,7 +72,7 @@ void LinkComponents(const std::vector<std::vector<int>>& reads, Partition& p) {
   p.downstream.assign(p.components.size(), {});
   for (int i = 0; i < n; ++i) {
     const int ci = p.component_of[i];
-    for (int j : reads[i]) {
+    for (int j : reads.of(i)) {
       const int cj = p.component_of[j];
       if (cj != ci) p.upstream[ci].push_back(cj);
     }
@@ -87,8 +87,7 @@ void LinkComponents(const std::vector<std::vector<int>>& reads, Partition& p) {
 
 // Replaces the components by their groups: `head[c]` is the member whose
 // place in the order c's group takes (head[head[c]] == head[c]).
-void Contract(const std::vector<std::vector<int>>& reads, const std::vector<int>& head,
-              Partition& p) {
+void Contract(const ReadGraph& reads, const std::vector<int>& head, Partition& p) {
   const int nc = static_cast<int>(p.components.size());
   std::vector<std::vector<int>> fused;
   std::vector<int> slot(nc, -1);  // head → index in `fused`
@@ -113,7 +112,7 @@ void Contract(const std::vector<std::vector<int>>& reads, const std::vector<int>
 // group's last member has arcs leaving the group, so contracting these arcs
 // keeps the graph acyclic, and the group takes the place of its last member,
 // after everything any member reads.
-void FuseChains(const std::vector<std::vector<int>>& reads, Partition& p) {
+void FuseChains(const ReadGraph& reads, Partition& p) {
   const int nc = static_cast<int>(p.components.size());
   std::vector<int> parent(nc);  // union–find over components
   std::iota(parent.begin(), parent.end(), 0);
@@ -140,8 +139,7 @@ void FuseChains(const std::vector<std::vector<int>>& reads, Partition& p) {
 // only that body's variables, and none is read by or reads a component
 // outside them.  With no arc leaving or entering the group, its place in the
 // order does not matter; it takes its last member's.
-void FuseBodies(const std::vector<std::vector<int>>& reads, const std::vector<int>& body_of,
-                Partition& p) {
+void FuseBodies(const ReadGraph& reads, const std::vector<int>& body_of, Partition& p) {
   const int nc = static_cast<int>(p.components.size());
   std::vector<int> body(nc, -1);  // per component: its one body, or -1
   for (int c = 0; c < nc; ++c) {
@@ -170,9 +168,24 @@ void FuseBodies(const std::vector<std::vector<int>>& reads, const std::vector<in
 
 }  // namespace
 
+ReadGraph ReadGraph::From(const std::vector<std::vector<int>>& reads) {
+  ReadGraph g;
+  g.start.reserve(reads.size() + 1);
+  for (const auto& r : reads) {
+    g.vars.insert(g.vars.end(), r.begin(), r.end());
+    g.start.push_back(static_cast<int>(g.vars.size()));
+  }
+  return g;
+}
+
 Partition PartitionEquations(const std::vector<std::vector<int>>& reads, bool single,
                              bool fuse_chains, const std::vector<int>& body_of) {
-  const int n = static_cast<int>(reads.size());
+  return PartitionEquations(ReadGraph::From(reads), single, fuse_chains, body_of);
+}
+
+Partition PartitionEquations(const ReadGraph& reads, bool single, bool fuse_chains,
+                             const std::vector<int>& body_of) {
+  const int n = reads.size();
   Partition p;
   if (single) {
     if (n > 0) {

@@ -15,9 +15,26 @@
 // the stack.
 #pragma once
 
+#include <span>
 #include <vector>
 
 namespace asgard::solver {
+
+// The reference graph in flat arrays: the variables that the equation of
+// variable i reads are vars[start[i]] … vars[start[i + 1] − 1], sorted.  One
+// allocation for the whole graph rather than one per variable (a scene of
+// many idle bodies builds it for every one of their variables).
+struct ReadGraph {
+  ReadGraph() = default;      // not an aggregate: a braced list means lists per variable
+  std::vector<int> start{0};  // size: variables + 1
+  std::vector<int> vars;
+  int size() const { return static_cast<int>(start.size()) - 1; }
+  std::span<const int> of(int i) const {
+    return {vars.data() + start[i], static_cast<size_t>(start[i + 1] - start[i])};
+  }
+  // From one list per variable.
+  static ReadGraph From(const std::vector<std::vector<int>>& reads);
+};
 
 struct Partition {
   std::vector<std::vector<int>> components;  // variables of each component, sorted
@@ -43,6 +60,8 @@ struct Partition {
 // take one step together (one ballistic step when it flies under constant
 // forces with its spin at rest) rather than one each.  Nothing else reads
 // them, so no other component's steps change.
+Partition PartitionEquations(const ReadGraph& reads, bool single = false, bool fuse_chains = false,
+                             const std::vector<int>& body_of = {});
 Partition PartitionEquations(const std::vector<std::vector<int>>& reads, bool single = false,
                              bool fuse_chains = false, const std::vector<int>& body_of = {});
 

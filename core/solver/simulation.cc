@@ -8,30 +8,13 @@
 namespace asgard::solver {
 namespace {
 
-std::vector<std::vector<int>> ReadsOf(const physics::EquationSystem& sys) {
-  std::vector<std::vector<int>> reads(sys.variables.size());
-  // One walk per variable over its expressions' nodes, marked with the
-  // variable's stamp (Pool::Variables builds a hash set per call, which was
-  // a quarter of a resting body's set-up).
-  std::vector<size_t> stamp(sys.pool.size(), 0);
-  std::vector<expr::NodeId> stack;
-  for (size_t i = 0; i < sys.variables.size(); ++i) {
-    const auto& v = sys.variables[i];
-    stack.assign(1, v.rhs);
-    for (const auto& o : v.overrides) stack.push_back(o.expr);
-    while (!stack.empty()) {
-      const expr::NodeId id = stack.back();
-      stack.pop_back();
-      if (stamp[id] == i + 1) continue;
-      stamp[id] = i + 1;
-      const expr::Node& n = sys.pool.node(id);
-      if (n.op == expr::Op::kVar) reads[i].push_back(n.index);
-      stack.insert(stack.end(), n.args.begin(), n.args.end());
-    }
-  }
+ReadGraph ReadsOf(const physics::EquationSystem& sys) {
   // An exact joint's force depends on the whole state of every body it
   // connects, directly or through other joints: a jointed group must be one
-  // component.
+  // component.  Each body's acceleration rows read its own state and the
+  // next body's (a ring): the group is one strongly connected component, as
+  // it would be with every row reading every variable, at a cost linear in
+  // the group's size rather than quadratic.
   const int nb = static_cast<int>(sys.bodies.size());
   std::vector<int> root(nb);
   for (int b = 0; b < nb; ++b) root[b] = b;
@@ -39,36 +22,72 @@ std::vector<std::vector<int>> ReadsOf(const physics::EquationSystem& sys) {
     while (root[b] != b) b = root[b] = root[root[b]];
     return b;
   };
-  for (const auto& j : sys.joints)
-    if (j.body_b >= 0) root[find(j.body_a)] = find(j.body_b);
-  std::vector<std::vector<int>> groups(nb);
-  for (const auto& j : sys.joints) groups[find(j.body_a)].push_back(j.body_a);
-  for (const auto& j : sys.joints)
-    if (j.body_b >= 0) groups[find(j.body_b)].push_back(j.body_b);
-  for (auto& g : groups) {
-    std::sort(g.begin(), g.end());
-    g.erase(std::unique(g.begin(), g.end()), g.end());
-    // Each body's acceleration rows read its own state and the next body's
-    // (a ring): the group is one strongly connected component, as it would
-    // be with every row reading every variable, at a cost linear in the
-    // group's size rather than quadratic.
-    for (size_t i = 0; i < g.size(); ++i) {
-      const int own = sys.bodies[g[i]].first_var;
-      const int next = sys.bodies[g[(i + 1) % g.size()]].first_var;
-      for (int s :
-           {physics::kDx, physics::kDy, physics::kDz, physics::kW1, physics::kW2, physics::kW3}) {
-        auto& r = reads[own + s];
-        r.reserve(r.size() + physics::kBodySlots + 1);
-        for (int k = 0; k < physics::kBodySlots; ++k) r.push_back(own + k);
-        r.push_back(next);
-      }
+  std::vector<char> jointed(nb, 0);
+  for (const auto& j : sys.joints) {
+    jointed[j.body_a] = 1;
+    if (j.body_b >= 0) {
+      jointed[j.body_b] = 1;
+      root[find(j.body_a)] = find(j.body_b);
     }
   }
-  for (auto& r : reads) {
-    std::sort(r.begin(), r.end());
-    r.erase(std::unique(r.begin(), r.end()), r.end());
+  // next[b]: the next jointed body of b's group in index order (wrapping),
+  // or -1 for a body in no joint.
+  std::vector<int> next(nb, -1), first(nb, -1), last(nb, -1);
+  for (int b = 0; b < nb; ++b) {
+    if (!jointed[b] || sys.bodies[b].first_var < 0) continue;
+    const int g = find(b);
+    if (last[g] >= 0)
+      next[last[g]] = b;
+    else
+      first[g] = b;
+    last[g] = b;
   }
-  return reads;
+  for (int g = 0; g < nb; ++g)
+    if (last[g] >= 0) next[last[g]] = first[g];
+
+  // One walk per variable over its expressions' nodes, marked with the
+  // variable's stamp (Pool::Variables builds a hash set per call, which was
+  // a quarter of a resting body's set-up); variables read are deduplicated
+  // by the same stamp and appended to one flat array.
+  const size_t nv = sys.variables.size();
+  ReadGraph g;
+  g.start.reserve(nv + 1);
+  g.vars.reserve(8 * nv);
+  std::vector<uint32_t> stamp(sys.pool.size(), 0), seen(nv, 0);
+  std::vector<expr::NodeId> stack;
+  for (size_t i = 0; i < nv; ++i) {
+    const uint32_t mark = static_cast<uint32_t>(i + 1);
+    const size_t begin = g.vars.size();
+    auto read = [&](int v) {
+      if (seen[v] == mark) return;
+      seen[v] = mark;
+      g.vars.push_back(v);
+    };
+    const auto& v = sys.variables[i];
+    stack.assign(1, v.rhs);
+    for (const auto& o : v.overrides) stack.push_back(o.expr);
+    while (!stack.empty()) {
+      const expr::NodeId id = stack.back();
+      stack.pop_back();
+      if (stamp[id] == mark) continue;
+      stamp[id] = mark;
+      const expr::Node& n = sys.pool.node(id);
+      if (n.op == expr::Op::kVar) read(n.index);
+      stack.insert(stack.end(), n.args.begin(), n.args.end());
+    }
+    if (v.body >= 0 && next[v.body] >= 0) {
+      const int own = sys.bodies[v.body].first_var;
+      const int slot = static_cast<int>(i) - own;
+      if (slot == physics::kDx || slot == physics::kDy || slot == physics::kDz ||
+          slot == physics::kW1 || slot == physics::kW2 || slot == physics::kW3) {
+        for (int k = 0; k < physics::kBodySlots; ++k) read(own + k);
+        read(sys.bodies[next[v.body]].first_var);
+      }
+    }
+    std::sort(g.vars.begin() + static_cast<std::ptrdiff_t>(begin), g.vars.end());
+    g.start.push_back(static_cast<int>(g.vars.size()));
+  }
+  return g;
 }
 
 }  // namespace
@@ -346,10 +365,7 @@ void Simulation::RebuildBreakpoints(const std::vector<int>& cs) {
   for (size_t k = first; k < components_.size(); ++k) {
     if (!dirty[k]) continue;
     std::vector<double> inherited;
-    for (int u : partition_.upstream[k]) {
-      const auto& b = components_[u]->dynamic_breakpoints();
-      inherited.insert(inherited.end(), b.begin(), b.end());
-    }
+    for (int u : partition_.upstream[k]) components_[u]->BreakpointsInto(inherited);
     components_[k]->SetDynamicBreakpoints(inherited);
     for (int d : partition_.downstream[k]) dirty[d] = 1;
   }

@@ -31,6 +31,7 @@
 #include <functional>
 #include <memory>
 #include <queue>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -50,10 +51,9 @@ struct RunBudget {
   // truncations included (a run of the samples takes ~1e5; 5e7 is minutes).
   long steps = 50'000'000;
   // Velocity jumps (impacts and resting-contact events) one body may take
-  // in one Run.  A body's jumps cost more as they accumulate (its components
-  // merge their event times at each, linear in their number), so this also
-  // bounds the time a run can spend on one body bouncing: 10 000 take about
-  // 14 s for a ball between two walls.  Resting contact makes at most about
+  // in one Run.  Each jump restarts the body's component (and truncates
+  // its readers), so this also bounds the time a run can spend on one body
+  // bouncing.  Resting contact makes at most about
   // one event per check window (1024 per run) while awake.
   long impulses_per_body = 10'000;
   // Impacts of all bodies in one Run, as the collision monitor counts them
@@ -106,7 +106,7 @@ class Simulation {
   // The variables that the equation of `var` reads (its right-hand side and
   // overrides; a jointed group's acceleration rows also read their body and
   // the next body of the group, which makes the group one component).
-  const std::vector<int>& reads(int var) const { return reads_[var]; }
+  std::span<const int> reads(int var) const { return reads_.of(var); }
   // Index of `var` within its component's waveform.
   int local_index(int var) const { return local_index_[var]; }
   Counters totals() const;
@@ -205,7 +205,7 @@ class Simulation {
   Partition partition_;
   std::vector<int> local_index_;             // variable → index within its component
   std::vector<std::vector<int>> joints_of_;  // per component
-  std::vector<std::vector<int>> reads_;      // per variable
+  ReadGraph reads_;                          // per variable: what its equation reads
   std::vector<std::unique_ptr<Component>> components_;
   std::vector<double> values_;
   expr::ExternFn externs_;
