@@ -540,6 +540,7 @@ bool CollisionMonitor::CheckEpoch() {
     box_lo_[i] = lo - r;
     box_hi_[i] = hi + r;
     box_version_[i] = version_[i];
+    ++counters_.boxes;
     changed.push_back(b);
     if (window_stamp_[i] != window_serial_) {
       window_stamp_[i] = window_serial_;

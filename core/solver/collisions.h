@@ -51,6 +51,7 @@ namespace asgard::solver {
 
 struct CollisionCounters {
   long windows = 0;               // epochs checked
+  long boxes = 0;                 // bodies boxed for a window (resting ones are not)
   long broad_phase_pairs = 0;     // candidate pairs from sweep and prune
   long narrow_phase_queries = 0;  // time-of-impact searches
   long distance_queries = 0;      // distance evaluations inside them
