@@ -1053,7 +1053,16 @@ void CollisionMonitor::Respond(const Impact& impact) {
                                 (balls_only(impact.b) && !Movable(impact.a, t)));
   // Impacts that keep coming at one instant (a jam) are solved together too,
   // whatever their speed: one pair at a time only passes the push around.
-  if ((approach <= slow_speed || same_instant_ > kJamEvents) && !ball_on_immovable) {
+  // So is a pair struck again at the instant it already had its impact:
+  // its restitution was applied then, and what approaches now is pushed by
+  // its neighbours (a stack, where single-pair impulses ping-ponged up and
+  // down the column, thousands of events at a few instants).
+  auto same_t = std::equal_range(impacts_.begin(), impacts_.end(), impact,
+                                 [](const Impact& x, const Impact& y) { return x.t < y.t; });
+  const bool again = std::any_of(same_t.first, same_t.second, [&](const Impact& x) {
+    return x.a == impact.a && x.b == impact.b;
+  });
+  if ((approach <= slow_speed || same_instant_ > kJamEvents || again) && !ball_on_immovable) {
     RespondResting(impact);
     return;
   }
