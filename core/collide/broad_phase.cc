@@ -17,6 +17,18 @@
 // tree built once (median splits on the longest axis), which each moving box
 // descends (log S + its hits).  Statics never pair with one another.
 //
+// Resting boxes (bodies holding still: asleep, or at rest where no force
+// moves them) would otherwise be sampled, boxed and sorted every window
+// though they do not change: a thousand hanging pendulums cost the sweep a
+// thousand boxes per window.  They go in a second tree that pairs only with
+// moving boxes.  It changes incrementally: a removal bumps the id's
+// generation, so its leaf no longer counts (the node bounds stay
+// conservative); an addition waits in a list each moving box scans; the
+// tree is rebuilt from the live boxes once that list exceeds 8 + R/8 or
+// the dead leaves 8 + R (R live boxes), so a change costs amortised
+// O(log R) and a window with no change costs only the moving boxes'
+// descents.
+//
 // Rejected alternatives:
 //   * Persistent incremental sweep and prune (insertion sort between calls):
 //     faster for coherent scenes, but the interface rebuilds boxes per query
@@ -30,15 +42,6 @@
 
 namespace asgard::collide {
 
-namespace {
-
-template <typename A, typename B>
-bool Overlap(const A& a, const B& b) {
-  return (a.lo.array() <= b.hi.array()).all() && (b.lo.array() <= a.hi.array()).all();
-}
-
-}  // namespace
-
 void BroadPhase::Clear() { boxes_.clear(); }
 
 void BroadPhase::Add(int id, const Eigen::Vector3d& lo, const Eigen::Vector3d& hi) {
@@ -46,41 +49,92 @@ void BroadPhase::Add(int id, const Eigen::Vector3d& lo, const Eigen::Vector3d& h
 }
 
 void BroadPhase::AddStatic(int id, const Eigen::Vector3d& lo, const Eigen::Vector3d& hi) {
-  statics_.push_back(Box{id, lo, hi});
-  tree_.clear();
+  statics_.boxes.push_back(Box{id, lo, hi});
+  statics_built_ = false;
 }
 
-// Top-down: the node bounds statics_[begin, end); inner nodes split them at
+void BroadPhase::AddResting(int id, const Eigen::Vector3d& lo, const Eigen::Vector3d& hi) {
+  const size_t i = static_cast<size_t>(id);
+  if (i >= resting_gen_.size()) resting_gen_.resize(i + 1, 0);
+  if (resting_gen_[i] != 0)
+    ++resting_dead_;  // the old box of this id
+  else
+    ++resting_live_;
+  resting_gen_[i] = next_gen_++;
+  resting_new_.push_back(Box{id, lo, hi, resting_gen_[i]});
+  if (static_cast<long>(resting_new_.size()) > 8 + resting_live_ / 8) RebuildResting();
+}
+
+void BroadPhase::RemoveResting(int id) {
+  if (!Resting(id)) return;
+  resting_gen_[static_cast<size_t>(id)] = 0;
+  --resting_live_;
+  ++resting_dead_;
+  if (resting_dead_ > 8 + resting_live_) RebuildResting();
+}
+
+void BroadPhase::RebuildResting() {
+  std::vector<Box> live;
+  live.reserve(static_cast<size_t>(resting_live_));
+  for (const auto* list : {&resting_.boxes, &resting_new_})
+    for (const Box& b : *list)
+      if (resting_gen_[static_cast<size_t>(b.id)] == b.gen) live.push_back(b);
+  resting_.boxes = std::move(live);
+  resting_.Build();
+  resting_new_.clear();
+  resting_dead_ = 0;
+}
+
+// Top-down: the node bounds boxes[begin, end); inner nodes split them at
 // the median centre along the longest axis of the centres' extent.
-int BroadPhase::Build(int begin, int end) const {
-  const int index = static_cast<int>(tree_.size());
-  tree_.push_back(Node{});
-  Eigen::Vector3d lo = statics_[begin].lo, hi = statics_[begin].hi;
+int BroadPhase::Tree::Build(int begin, int end) {
+  const int index = static_cast<int>(nodes.size());
+  nodes.push_back(Node{});
+  Eigen::Vector3d lo = boxes[begin].lo, hi = boxes[begin].hi;
   Eigen::Vector3d clo = lo + hi, chi = lo + hi;  // twice the centres
   for (int i = begin + 1; i < end; ++i) {
-    lo = lo.cwiseMin(statics_[i].lo);
-    hi = hi.cwiseMax(statics_[i].hi);
-    clo = clo.cwiseMin(statics_[i].lo + statics_[i].hi);
-    chi = chi.cwiseMax(statics_[i].lo + statics_[i].hi);
+    lo = lo.cwiseMin(boxes[i].lo);
+    hi = hi.cwiseMax(boxes[i].hi);
+    clo = clo.cwiseMin(boxes[i].lo + boxes[i].hi);
+    chi = chi.cwiseMax(boxes[i].lo + boxes[i].hi);
   }
-  tree_[index].lo = lo;
-  tree_[index].hi = hi;
+  nodes[index].lo = lo;
+  nodes[index].hi = hi;
   if (end - begin == 1) {
-    tree_[index].first = begin;
+    nodes[index].first = begin;
     return index;
   }
   int axis = 0;
   (chi - clo).maxCoeff(&axis);
   const int mid = begin + (end - begin) / 2;
-  std::nth_element(statics_.begin() + begin, statics_.begin() + mid, statics_.begin() + end,
+  std::nth_element(boxes.begin() + begin, boxes.begin() + mid, boxes.begin() + end,
                    [axis](const Box& a, const Box& b) {
                      const double ca = a.lo[axis] + a.hi[axis], cb = b.lo[axis] + b.hi[axis];
                      return ca != cb ? ca < cb : a.id < b.id;
                    });
   Build(begin, mid);
   const int right = Build(mid, end);
-  tree_[index].right = right;
+  nodes[index].right = right;
   return index;
+}
+
+template <typename F>
+void BroadPhase::Tree::Query(const Eigen::Vector3d& lo, const Eigen::Vector3d& hi, F&& f) const {
+  if (nodes.empty()) return;
+  int stack[64];  // depth ≤ log2(boxes) + 1 (median splits)
+  int top = 0;
+  stack[top++] = 0;
+  while (top > 0) {
+    const int at = stack[--top];
+    const Node& node = nodes[static_cast<size_t>(at)];
+    if (!BoxesOverlap(lo, hi, node.lo, node.hi)) continue;
+    if (node.first >= 0) {
+      f(boxes[static_cast<size_t>(node.first)]);
+      continue;
+    }
+    stack[top++] = node.right;
+    stack[top++] = at + 1;
+  }
 }
 
 std::vector<std::pair<int, int>> BroadPhase::Pairs() const {
@@ -94,36 +148,29 @@ std::vector<std::pair<int, int>> BroadPhase::Pairs() const {
     return i < j;
   });
   std::vector<std::pair<int, int>> pairs;
+  auto pair = [&pairs](int a, int b) {
+    if (a != b) pairs.emplace_back(std::min(a, b), std::max(a, b));
+  };
   for (size_t k = 0; k < order.size(); ++k) {
     const Box& a = boxes_[order[k]];
     for (size_t m = k + 1; m < order.size(); ++m) {
       const Box& b = boxes_[order[m]];
       if (b.lo.x() > a.hi.x()) break;
-      if (a.id == b.id) continue;
-      if (b.lo.y() > a.hi.y() || a.lo.y() > b.hi.y()) continue;
-      if (b.lo.z() > a.hi.z() || a.lo.z() > b.hi.z()) continue;
-      pairs.emplace_back(std::min(a.id, b.id), std::max(a.id, b.id));
+      if (BoxesOverlap(a.lo, a.hi, b.lo, b.hi)) pair(a.id, b.id);
     }
   }
-  if (!statics_.empty()) {
-    if (tree_.empty()) Build(0, static_cast<int>(statics_.size()));
-    std::vector<int> stack;
-    for (const Box& a : boxes_) {
-      stack.assign(1, 0);
-      while (!stack.empty()) {
-        const Node& node = tree_[static_cast<size_t>(stack.back())];
-        const int at = stack.back();
-        stack.pop_back();
-        if (!Overlap(a, node)) continue;
-        if (node.first >= 0) {
-          const Box& s = statics_[static_cast<size_t>(node.first)];
-          if (s.id != a.id) pairs.emplace_back(std::min(a.id, s.id), std::max(a.id, s.id));
-          continue;
-        }
-        stack.push_back(node.right);
-        stack.push_back(at + 1);
-      }
-    }
+  if (!statics_built_) {
+    statics_.Build();
+    statics_built_ = true;
+  }
+  for (const Box& a : boxes_) {
+    statics_.Query(a.lo, a.hi, [&](const Box& s) { pair(a.id, s.id); });
+    auto resting = [&](const Box& r) {
+      if (resting_gen_[static_cast<size_t>(r.id)] == r.gen) pair(a.id, r.id);
+    };
+    resting_.Query(a.lo, a.hi, resting);
+    for (const Box& r : resting_new_)
+      if (BoxesOverlap(a.lo, a.hi, r.lo, r.hi)) resting(r);
   }
   std::sort(pairs.begin(), pairs.end());
   pairs.erase(std::unique(pairs.begin(), pairs.end()), pairs.end());

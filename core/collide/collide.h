@@ -120,6 +120,12 @@ std::vector<ContactPoint> Manifold(const Piece& a, const Pose& pa, const Piece& 
                                    const DistanceResult& closest, double signed_distance,
                                    double margin);
 
+// Whether two closed axis-aligned boxes overlap (touching counts).
+inline bool BoxesOverlap(const Eigen::Vector3d& a_lo, const Eigen::Vector3d& a_hi,
+                         const Eigen::Vector3d& b_lo, const Eigen::Vector3d& b_hi) {
+  return (a_lo.array() <= b_hi.array()).all() && (b_lo.array() <= a_hi.array()).all();
+}
+
 // Sweep and prune over axis-aligned boxes (the solver passes boxes that
 // bound a body's bounding sphere over a time interval).  Pairs are reported
 // once, as (smaller id, larger id), sorted.  Cost ~ N log N + overlaps.
@@ -127,31 +133,68 @@ std::vector<ContactPoint> Manifold(const Piece& a, const Pose& pa, const Piece& 
 // Static boxes (AddStatic) stay across Clear and live in their own tree: a
 // moving box is tested against the statics it overlaps (log S + hits), and
 // two statics never pair, so a closed box of walls adds nothing per window.
+//
+// Resting boxes (AddResting, bodies that hold still for a while) also stay
+// across Clear, until RemoveResting: they pair with moving boxes only, never
+// with statics or one another.  They live in a second tree, updated
+// incrementally: a removal marks its leaf dead, an addition goes to a short
+// list scanned linearly, and the tree is rebuilt only when that list or the
+// dead leaves outgrow a fraction of the live ones (amortised O(log R) per
+// change), so bodies falling asleep and waking cost nothing per window.
 class BroadPhase {
  public:
-  // Drops the moving boxes (static ones stay).
+  // Drops the moving boxes (static and resting ones stay).
   void Clear();
   void Add(int id, const Eigen::Vector3d& lo, const Eigen::Vector3d& hi);
   void AddStatic(int id, const Eigen::Vector3d& lo, const Eigen::Vector3d& hi);
+  // Adds (or replaces) the resting box of `id` (id >= 0).
+  void AddResting(int id, const Eigen::Vector3d& lo, const Eigen::Vector3d& hi);
+  // Drops the resting box of `id`, if any.
+  void RemoveResting(int id);
+  bool Resting(int id) const {
+    return id >= 0 && static_cast<size_t>(id) < resting_gen_.size() &&
+           resting_gen_[static_cast<size_t>(id)] != 0;
+  }
   std::vector<std::pair<int, int>> Pairs() const;
 
  private:
   struct Box {
     int id;
     Eigen::Vector3d lo, hi;
+    long gen = 0;  // resting boxes: live while resting_gen_[id] == gen
   };
-  // Node of the static tree: a leaf holds statics_[first], an inner node
-  // its two children (left = this + 1, right = `right`).
+  // Node of a tree: a leaf holds boxes[first], an inner node its two
+  // children (left = this + 1, right = `right`).
   struct Node {
     Eigen::Vector3d lo = Eigen::Vector3d::Zero(), hi = Eigen::Vector3d::Zero();
-    int first = -1;  // leaf: index into statics_; inner: -1
+    int first = -1;  // leaf: index into boxes; inner: -1
     int right = -1;
   };
-  int Build(int begin, int end) const;
+  // Bounding-box tree over `boxes` (reordered by Build: median splits on
+  // the longest axis of the centres' extent).
+  struct Tree {
+    std::vector<Box> boxes;
+    std::vector<Node> nodes;
+    void Build() {
+      nodes.clear();
+      if (!boxes.empty()) Build(0, static_cast<int>(boxes.size()));
+    }
+    // Calls f(box) for every box overlapping [lo, hi].
+    template <typename F>
+    void Query(const Eigen::Vector3d& lo, const Eigen::Vector3d& hi, F&& f) const;
+
+   private:
+    int Build(int begin, int end);
+  };
+  void RebuildResting();
   std::vector<Box> boxes_;
-  // Built on the first Pairs after AddStatic (which reorders statics_).
-  mutable std::vector<Box> statics_;
-  mutable std::vector<Node> tree_;
+  // Built on the first Pairs after AddStatic.
+  mutable Tree statics_;
+  mutable bool statics_built_ = false;
+  Tree resting_;                   // live and dead resting boxes as of the last rebuild
+  std::vector<Box> resting_new_;   // added since
+  std::vector<long> resting_gen_;  // per id: its live resting box's generation, 0: none
+  long resting_live_ = 0, resting_dead_ = 0, next_gen_ = 1;
 };
 
 // Motion of a body over an interval: its pose at any time in the interval,

@@ -265,6 +265,19 @@ CollisionMonitor::CollisionMonitor(Simulation& sim, double separation)
     }
     UpdateEnd(static_cast<int>(b));
   }
+  const size_t n = bodies_.size();
+  box_version_.assign(n, -1);
+  box_lo_.resize(n);
+  box_hi_.resize(n);
+  rest_from_.assign(n, -kInf);
+  rest_until_.assign(n, kInf);
+  window_stamp_.assign(n, 0);
+  moving_index_.assign(n, -1);
+  for (size_t b = 0; b < n; ++b)
+    if (bodies_[b].collidable && sys_.bodies[b].first_var >= 0) {
+      moving_index_[b] = static_cast<int>(moving_.size());
+      moving_.push_back(static_cast<int>(b));
+    }
   // The static bodies' boxes, widened by the landing gap, in the broad
   // phase's tree for the whole run.
   for (size_t b = 0; b < bodies_.size(); ++b)
@@ -367,6 +380,50 @@ void CollisionMonitor::ForEachSegment(int var, double t0, double t1, F&& f) cons
   }
 }
 
+void CollisionMonitor::Rest(int b) {
+  const size_t i = static_cast<size_t>(b);
+  broad_.AddResting(b, box_lo_[i], box_hi_[i]);
+  rest_by_from_.insert({rest_from_[i], b});
+  rest_by_until_.insert({rest_until_[i], b});
+  const int last = moving_.back();
+  moving_[static_cast<size_t>(moving_index_[i])] = last;
+  moving_index_[static_cast<size_t>(last)] = moving_index_[i];
+  moving_.pop_back();
+  moving_index_[i] = -1;
+}
+
+void CollisionMonitor::Unrest(int b) {
+  const size_t i = static_cast<size_t>(b);
+  broad_.RemoveResting(b);
+  rest_by_from_.erase({rest_from_[i], b});
+  rest_by_until_.erase({rest_until_[i], b});
+  moving_index_[i] = static_cast<int>(moving_.size());
+  moving_.push_back(b);
+}
+
+std::optional<std::pair<double, double>> CollisionMonitor::HeldSpan(int b, double t0,
+                                                                    double t1) const {
+  const physics::BodyModel& m = sys_.bodies[b];
+  if (m.first_var < 0) return std::nullopt;
+  double from = -kInf, until = kInf;
+  for (int slot : {physics::kX, physics::kY, physics::kZ, physics::kQw, physics::kQx, physics::kQy,
+                   physics::kQz}) {
+    const int var = m.first_var + slot;
+    const Waveform& w = sim_.component(sim_.component_of(var)).waveform();
+    const int i = sim_.local_index(var);
+    const int k = w.KeepIndex(t0);
+    const double x = w.x(k)[i];
+    if (w.f(k)[i] != 0) return std::nullopt;
+    int j = k;
+    while (j + 1 < w.size() && w.x(j + 1)[i] == x && w.f(j + 1)[i] == 0 && w.bubble(j + 1)[i] == 0)
+      ++j;
+    if (w.time(j) < t1) return std::nullopt;
+    from = std::max(from, w.time(k));
+    until = std::min(until, w.time(j));
+  }
+  return std::pair{from, until};
+}
+
 collide::Pose CollisionMonitor::PoseAt(int b, double t) const {
   const physics::BodyModel& m = sys_.bodies[b];
   collide::Pose pose;
@@ -450,15 +507,27 @@ bool CollisionMonitor::CheckEpoch() {
   // pairs: the rest are the same boxes, so the same pairs.
   const bool again = boxes_epoch_ == epoch_;
   boxes_epoch_ = epoch_;
-  box_version_.resize(bodies_.size(), -1);
-  box_lo_.resize(bodies_.size());
-  box_hi_.resize(bodies_.size());
-  std::vector<int> changed;
-  for (size_t b = 0; b < bodies_.size(); ++b) {
-    const BodyInfo& info = bodies_[b];
-    const physics::BodyModel& m = sys_.bodies[b];
-    if (!info.collidable || m.first_var < 0) continue;
-    if (again && box_version_[b] == version_[b]) continue;
+  const size_t n = bodies_.size();
+  if (!again) {
+    ++window_serial_;
+    window_moving_.clear();
+    // Resting bodies whose span of rest does not cover this window (it ran
+    // out, or the check went back before it) are boxed again.
+    while (!rest_by_until_.empty() && rest_by_until_.begin()->first < e1)
+      Unrest(rest_by_until_.begin()->second);
+    while (!rest_by_from_.empty() && rest_by_from_.rbegin()->first > e0)
+      Unrest(rest_by_from_.rbegin()->second);
+  }
+  // A body holding still is not boxed again: its box is the one it had when
+  // it came to rest, among the broad phase's resting boxes, which pair only
+  // with moving ones — two bodies that do not move cannot collide (the pair
+  // was tested at these poses in the window the later one came to rest).
+  // Only the moving bodies are visited; a truncation wakes a resting one.
+  std::vector<int> changed, resting;
+  for (int b : moving_) {
+    const size_t i = static_cast<size_t>(b);
+    if (again && window_stamp_[i] == window_serial_ && box_version_[i] == version_[i]) continue;
+    const physics::BodyModel& m = sys_.bodies[i];
     Eigen::Vector3d lo, hi;
     for (int a = 0; a < 3; ++a) {
       const int var = m.first_var + physics::kX + a;
@@ -467,28 +536,40 @@ bool CollisionMonitor::CheckEpoch() {
         ValueRange(p, s0, s1, lo[a], hi[a]);
       });
     }
-    const Eigen::Vector3d r = Eigen::Vector3d::Constant(info.radius + separation_);
-    box_lo_[b] = lo - r;
-    box_hi_[b] = hi + r;
-    box_version_[b] = version_[b];
-    changed.push_back(static_cast<int>(b));
+    const Eigen::Vector3d r = Eigen::Vector3d::Constant(bodies_[i].radius + separation_);
+    box_lo_[i] = lo - r;
+    box_hi_[i] = hi + r;
+    box_version_[i] = version_[i];
+    ++counters_.boxes;
+    changed.push_back(b);
+    if (window_stamp_[i] != window_serial_) {
+      window_stamp_[i] = window_serial_;
+      window_moving_.push_back(b);
+    }
+    if (const auto span = HeldSpan(b, e0, e1)) {
+      rest_from_[i] = span->first;
+      rest_until_[i] = span->second;
+      resting.push_back(b);
+    }
   }
-  // The changed bodies' pairs: among themselves and with the statics (the
-  // broad phase), and with the unchanged moving bodies (their boxes, one by one).
-  broad_.Clear();  // the static bodies' boxes stay (constructor)
+  // The changed bodies' pairs: among themselves, with the statics and with
+  // the resting bodies (the broad phase), and with the unchanged moving
+  // bodies (their boxes, one by one).  A body that has come to rest joins
+  // the resting boxes after its pairs are found.
+  broad_.Clear();  // the static and resting bodies' boxes stay
   for (int b : changed) broad_.Add(b, box_lo_[b], box_hi_[b]);
   std::vector<std::pair<int, int>> found = broad_.Pairs();
+  for (int b : resting) Rest(b);
   if (again) {
-    std::vector<char> is_changed(bodies_.size(), 0);
+    std::vector<char> is_changed(n, 0);
     for (int b : changed) is_changed[static_cast<size_t>(b)] = 1;
     std::erase_if(window_pairs_,
                   [&](const auto& p) { return is_changed[p.first] || is_changed[p.second]; });
     for (int c : changed)
-      for (size_t o = 0; o < bodies_.size(); ++o) {
-        if (is_changed[o] || !bodies_[o].collidable || sys_.bodies[o].first_var < 0) continue;
-        if ((box_lo_[c].array() <= box_hi_[o].array()).all() &&
-            (box_lo_[o].array() <= box_hi_[c].array()).all())
-          found.emplace_back(std::min(c, static_cast<int>(o)), std::max(c, static_cast<int>(o)));
+      for (int o : window_moving_) {
+        if (is_changed[static_cast<size_t>(o)]) continue;
+        if (collide::BoxesOverlap(box_lo_[c], box_hi_[c], box_lo_[o], box_hi_[o]))
+          found.emplace_back(std::min(c, o), std::max(c, o));
       }
   } else {
     window_pairs_.clear();
@@ -972,7 +1053,16 @@ void CollisionMonitor::Respond(const Impact& impact) {
                                 (balls_only(impact.b) && !Movable(impact.a, t)));
   // Impacts that keep coming at one instant (a jam) are solved together too,
   // whatever their speed: one pair at a time only passes the push around.
-  if ((approach <= slow_speed || same_instant_ > kJamEvents) && !ball_on_immovable) {
+  // So is a pair struck again at the instant it already had its impact:
+  // its restitution was applied then, and what approaches now is pushed by
+  // its neighbours (a stack, where single-pair impulses ping-ponged up and
+  // down the column, thousands of events at a few instants).
+  auto same_t = std::equal_range(impacts_.begin(), impacts_.end(), impact,
+                                 [](const Impact& x, const Impact& y) { return x.t < y.t; });
+  const bool again = std::any_of(same_t.first, same_t.second, [&](const Impact& x) {
+    return x.a == impact.a && x.b == impact.b;
+  });
+  if ((approach <= slow_speed || same_instant_ > kJamEvents || again) && !ball_on_immovable) {
     RespondResting(impact);
     return;
   }
@@ -1255,6 +1345,7 @@ void CollisionMonitor::OnTruncate(int component, double kept) {
   for (int b : bodies_of_component_[component]) {
     truncated_.push_back({b, kept});
     ++version_[static_cast<size_t>(b)];
+    if (broad_.Resting(b)) Unrest(b);
   }
 }
 

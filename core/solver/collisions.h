@@ -51,6 +51,7 @@ namespace asgard::solver {
 
 struct CollisionCounters {
   long windows = 0;               // epochs checked
+  long boxes = 0;                 // bodies boxed for a window (resting ones are not)
   long broad_phase_pairs = 0;     // candidate pairs from sweep and prune
   long narrow_phase_queries = 0;  // time-of-impact searches
   long distance_queries = 0;      // distance evaluations inside them
@@ -164,6 +165,14 @@ class CollisionMonitor {
   std::vector<int> RestingAxes(int body, const Eigen::Vector3d& n_into, bool partner_movable,
                                double t, Eigen::Vector3d& v);
   collide::Motion MotionOf(int body, double t0, double t1) const;
+  // The longest interval [from, until] ∋ [t0, t1] over which the body's pose
+  // is exactly constant in its waveforms (every interval from its sample at
+  // t0 on has equal values, zero rates and no bubble), or nothing when it
+  // moves within [t0, t1].
+  std::optional<std::pair<double, double>> HeldSpan(int body, double t0, double t1) const;
+  // Moves a body's box (box_lo_, box_hi_) among the resting ones, and back.
+  void Rest(int body);
+  void Unrest(int body);
   // Bound on |a(t) − ref| over [t0, t1] for the position interpolant's
   // acceleration a; AccelAt is that acceleration at t (the segment after t,
   // up to t1).
@@ -191,6 +200,21 @@ class CollisionMonitor {
   std::vector<long> box_version_;
   std::vector<Eigen::Vector3d> box_lo_, box_hi_;
   std::vector<std::pair<int, int>> window_pairs_;
+  // The collidable bodies that are not static and not resting (their boxes
+  // are computed per window), with each one's index there (-1: resting or
+  // not such a body).
+  std::vector<int> moving_, moving_index_;
+  // Bodies whose boxes were computed for the current window, and the
+  // window's serial number each was last boxed in.
+  std::vector<int> window_moving_;
+  std::vector<long> window_stamp_;
+  long window_serial_ = 0;
+  // A body that holds still (asleep, or at rest where nothing moves it) has
+  // its box among broad_'s resting ones and is not boxed again while every
+  // window checked lies within [rest_from_, rest_until_]; a truncation of
+  // its components (OnTruncate) ends that.
+  std::vector<double> rest_from_, rest_until_;
+  std::set<std::pair<double, int>> rest_by_from_, rest_by_until_;
   std::vector<std::vector<int>> bodies_of_component_;
   std::set<std::pair<int, int>> excluded_;  // directly linked parts of one artbody
   std::vector<Impact> impacts_;             // sorted by time

@@ -103,5 +103,53 @@ TEST(BroadPhase, StaticBoxesPairOnlyWithMovingOnesAndStayAcrossClear) {
   }
 }
 
+// Resting boxes come and go (sleep, wake) across rounds: moving boxes pair
+// with moving, static and resting ones exactly as brute force finds them;
+// resting boxes never pair with statics or one another.
+TEST(BroadPhase, RestingBoxesAddedAndRemovedPairOnlyWithMovingOnes) {
+  std::mt19937_64 rng(4);
+  std::uniform_real_distribution<double> position(0.0, 10.0), size(0.0, 1.2), big(0.0, 6.0);
+  std::uniform_int_distribution<int> pick(0, 299);
+  BroadPhase bp;
+  std::vector<Aabb> statics;
+  for (int i = 0; i < 10; ++i) {
+    const Eigen::Vector3d lo(position(rng), position(rng), position(rng));
+    statics.push_back({1000 + i, lo, lo + Eigen::Vector3d(big(rng), big(rng), big(rng))});
+    bp.AddStatic(statics.back().id, statics.back().lo, statics.back().hi);
+  }
+  std::vector<Aabb> boxes;  // ids 0..299, each moving or resting
+  std::vector<char> resting(300, 0);
+  for (int i = 0; i < 300; ++i) {
+    const Eigen::Vector3d lo(position(rng), position(rng), position(rng));
+    boxes.push_back({i, lo, lo + Eigen::Vector3d(size(rng), size(rng), size(rng))});
+  }
+  for (int round = 0; round < 30; ++round) {
+    // Some bodies fall asleep (possibly at a new place), some wake.
+    for (int k = 0; k < 25; ++k) {
+      const int i = pick(rng);
+      if (resting[i] && k % 2) {
+        bp.RemoveResting(i);
+        resting[i] = 0;
+      } else {
+        const Eigen::Vector3d lo(position(rng), position(rng), position(rng));
+        boxes[i] = {i, lo, lo + Eigen::Vector3d(size(rng), size(rng), size(rng))};
+        bp.AddResting(i, boxes[i].lo, boxes[i].hi);
+        resting[i] = 1;
+      }
+    }
+    bp.Clear();
+    for (const Aabb& b : boxes)
+      if (!resting[b.id]) bp.Add(b.id, b.lo, b.hi);
+    std::vector<Aabb> all = boxes;
+    all.insert(all.end(), statics.begin(), statics.end());
+    auto still = [&](int id) { return id >= 1000 || resting[id]; };
+    auto expected = BruteForce(all);
+    std::erase_if(expected, [&](const auto& p) { return still(p.first) && still(p.second); });
+    const auto pairs = bp.Pairs();
+    ASSERT_EQ(pairs, expected) << "round " << round;
+    for (int i = 0; i < 300; ++i) ASSERT_EQ(bp.Resting(i), resting[i] != 0) << i;
+  }
+}
+
 }  // namespace
 }  // namespace asgard::collide
