@@ -237,6 +237,25 @@ TEST(EditorRpc, ViewsWhoseOptionsAreExpressionsMoveTheirCameraEveryFrame) {
   }
 }
 
+// The exported page's data carries the scene's view per frame when it moves
+// (and not when it stands still).
+TEST(EditorRpc, PlayerDataCarriesAMovingViewsCameraAtEachFrame) {
+  session::Session s(kScene + "view lift -center {0 0 0} -rot {0 0 0} -pos {0 0 {10 + t}}\n");
+  ASSERT_TRUE(s.Simulate());
+  const pipeline::Run& run = *s.run();
+  render::SceneSampler sampler(run.scene, *run.equations, *run.simulation);
+  const render::ViewMotion motion = sampler.Motion(sampler.FindView());
+  const json data = PlayerData(sampler, *sampler.SceneView(), 10, &motion);
+  ASSERT_EQ(data["cameras"].size(), data["times"].size());
+  ASSERT_EQ(data["times"].size(), 11u);
+  for (size_t k = 0; k < data["times"].size(); ++k) {
+    const double t = data["times"][k].get<double>();
+    EXPECT_NEAR(data["cameras"][k][1][2].get<double>(), -10 - t, 1e-6) << "t = " << t;
+  }
+  const render::ViewMotion framing = sampler.Motion(nullptr);
+  EXPECT_FALSE(PlayerData(sampler, *sampler.SceneView(), 10, &framing).contains("cameras"));
+}
+
 // An expression with no usable value at some frame (-scale <= 0) leaves the
 // option at its default there and says where.
 TEST(EditorRpc, AViewExpressionWithoutAUsableValueSaysWhen) {
