@@ -62,7 +62,8 @@ Picture:
   --fps F           movie playback rate (default: the scene's frame rate)
 
 View (default: the whole animation framed, tilted slightly, seen from +z):
-  --view NAME       use the scene's view element NAME
+  --view NAME       use the scene's view element NAME (its -follow, -trajectory
+                    and expressions of time or state move it frame by frame)
   --rot AX,AY,AZ    rotation of the scene, a rotation vector in degrees
   --scale S         zoom (1: the whole scene fits)
   --center X,Y,Z    centre of rotation and scaling (scene units)
