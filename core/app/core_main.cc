@@ -321,6 +321,7 @@ class Slave {
   json Load(const std::string& text) {
     if (fault_ == "exit-on-load") std::_Exit(3);
     text_ = text;
+    motion_.reset();
     sampler_.reset();
     for (auto& [k, r] : renditions_) r.renderer.reset();
     json changes = json::array();
@@ -400,6 +401,7 @@ class Slave {
                        {"end_line", e.end_line},
                        {"end_column", e.end_column}});
     text_ = session_->text();
+    motion_.reset();
     sampler_.reset();
     for (auto& [k, r2] : renditions_) r2.renderer.reset();
     return {{"ok", true},
@@ -420,6 +422,7 @@ class Slave {
         std::this_thread::sleep_for(std::chrono::milliseconds(50));
       }
     }
+    motion_.reset();
     sampler_.reset();
     if (!session_) session_ = std::make_unique<session::Session>(text_);
     auto last = std::chrono::steady_clock::now() - std::chrono::seconds(1);
@@ -452,9 +455,11 @@ class Slave {
       run_ = nullptr;
       throw RpcError{kSceneError, message.empty() ? "the scene could not be simulated" : message};
     }
+    motion_.reset();  // it refers to the old sampler
     sampler_ =
         std::make_unique<render::SceneSampler>(run_->scene, *run_->equations, *run_->simulation);
     view_ = *sampler_->SceneView();
+    motion_.emplace(*sampler_, sampler_->FindView());
     return {{"t0", sampler_->t0()},
             {"t1", sampler_->t1()},
             {"frame_rate", sampler_->frame_rate()},
@@ -499,8 +504,10 @@ class Slave {
     f.sampler = sampler_.get();
     f.t = t;
     f.poses = sampler_->Poses(t);
-    f.camera = render::MakeCamera(view_, r.width, r.height);
-    f.view_radius = view_.radius / view_.scale;
+    // The scene's view as it is at t (-follow, -trajectory, expressions).
+    const render::ViewState view = motion_ ? motion_->At(t) : view_;
+    f.camera = render::MakeCamera(view, r.width, r.height);
+    f.view_radius = view.radius / view.scale;
     render::Overlays overlays;
     overlays.handles = handles;
     render::Image image;
@@ -551,7 +558,9 @@ class Slave {
         if (!end || *end != '\0' || !(rate > 0) || rate > 1000)
           throw RpcError{kInvalidParams, "player: the rate must be a number in (0, 1000]"};
       }
-      return {{"reply", editor_rpc::PlayerData(*sampler_, view_, rate).dump()}};
+      return {
+          {"reply",
+           editor_rpc::PlayerData(*sampler_, view_, rate, motion_ ? &*motion_ : nullptr).dump()}};
     }
     throw RpcError{kInvalidParams, "unknown command '" + line +
                                        "' (known: handles on|off, info, ping, player [RATE])"};
@@ -566,6 +575,7 @@ class Slave {
   const pipeline::Run* run_ = nullptr;  // the session's last run
   std::unique_ptr<render::SceneSampler> sampler_;
   render::ViewState view_;
+  std::optional<render::ViewMotion> motion_;  // the scene's view over time (refers to sampler_)
   std::map<int, Rendition> renditions_;
 };
 

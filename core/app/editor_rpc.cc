@@ -118,35 +118,42 @@ json Meshes(const render::SceneSampler& sampler) {
   return {{"ok", true}, {"bodies", std::move(bodies)}, {"lights", std::move(lights)}};
 }
 
+// [eye target up] of a camera.
+json CameraFrame(const render::Camera& c) { return {Vec(c.eye), Vec(c.target), Vec(c.up)}; }
+
 // Each `view` element's camera at the frame times, as asgard render places
-// it (render::MakeCamera for a square picture): -follow moves the centre
-// with a body, -trajectory along a trajectory's curve.
+// it (render::MakeCamera for a square picture): render::ViewMotion moves the
+// centre with -follow's body or -trajectory's curve and evaluates -pos, -rot
+// and -scale given as expressions at every frame.  `expressions` names the
+// options that are expressions (their handles are read-only); `problem`
+// says where one had no usable value (its default was used there).
 json Views(const render::SceneSampler& sampler, const session::Session& session,
            const std::vector<double>& times) {
   json views = json::array();
   const auto& scene = session.scene();
   for (size_t i = 0; i < scene.views.size(); ++i) {
     const auto& e = scene.views[i];
-    render::ViewState v = sampler.ElementView(&e);
-    int follow = -1;
-    for (size_t b = 0; b < sampler.bodies().size(); ++b)
-      if (!e.follow.empty() && sampler.bodies()[b].name == e.follow) follow = static_cast<int>(b);
-    std::optional<physics::TrajectoryCurve> curve;
-    for (const auto& tr : scene.trajectories)
-      if (!e.trajectory.empty() && tr.name == e.trajectory) curve.emplace(tr.knots);
+    const render::ViewMotion motion = sampler.Motion(&e);
     json cameras = json::array();
     double fov_y = 0;
+    std::string problem;
     for (double t : times) {
-      if (follow >= 0) v.center = sampler.Poses(t)[follow].p;
-      if (curve) v.center = curve->Value(t);
-      const render::Camera c = render::MakeCamera(v, 1, 1);
+      const render::Camera c = render::MakeCamera(motion.At(t, &problem), 1, 1);
       fov_y = c.fov_y;
-      cameras.push_back({Vec(c.eye), Vec(c.target), Vec(c.up)});
+      cameras.push_back(CameraFrame(c));
     }
-    views.push_back({{"name", e.name.empty() ? "view " + std::to_string(i + 1) : e.name},
-                     {"fov_y", fov_y},
-                     {"moves", follow >= 0 || curve.has_value()},
-                     {"cameras", std::move(cameras)}});
+    json expressions = json::array();
+    if (!e.position_expr.empty()) expressions.push_back("pos");
+    if (!e.rotation_expr.empty()) expressions.push_back("rot");
+    if (!e.scale_expr.empty()) expressions.push_back("scale");
+    json view = {{"name", e.name.empty() ? "view " + std::to_string(i + 1) : e.name},
+                 {"fov_y", fov_y},
+                 {"moves", motion.moves()},
+                 {"expressions", std::move(expressions)},
+                 {"cameras", std::move(cameras)}};
+    if (!motion.error().empty() || !problem.empty())
+      view["problem"] = motion.error().empty() ? problem : motion.error();
+    views.push_back(std::move(view));
   }
   return views;
 }
@@ -315,7 +322,8 @@ std::optional<json> Dispatch(const std::string& method, const json& /*params*/,
   return std::nullopt;
 }
 
-json PlayerData(const render::SceneSampler& sampler, const render::ViewState& view, double rate) {
+json PlayerData(const render::SceneSampler& sampler, const render::ViewState& view, double rate,
+                const render::ViewMotion* motion) {
   json data = Meshes(sampler);
   const double t0 = sampler.t0(), t1 = std::max(sampler.t0(), sampler.t1());
   rate = std::isfinite(rate) && rate > 0 ? rate : sampler.frame_rate();
@@ -327,6 +335,11 @@ json PlayerData(const render::SceneSampler& sampler, const render::ViewState& vi
   data["times"] = times;
   data["poses"] = std::move(frames);
   data["camera"] = CameraJson(render::MakeCamera(view, 1, 1));
+  if (motion && motion->moves()) {
+    json cameras = json::array();
+    for (double t : times) cameras.push_back(CameraFrame(render::MakeCamera(motion->At(t), 1, 1)));
+    data["cameras"] = std::move(cameras);
+  }
   AddOverlays(data, sampler, times, view.radius);
   return data;
 }

@@ -27,8 +27,10 @@
 //                      trajectories: [{name, values: [[x y z] per frame]}],
 //                      framing: {center, radius, eye_distance, tan_half_fov}
 //                      (asgard render's default view and camera),
-//                      views: [{name, fov_y, moves, cameras: [[eye target up]
-//                      per frame]}],
+//                      views: [{name, fov_y, moves, expressions: [the
+//                      options among pos rot scale given as expressions],
+//                      cameras: [[eye target up] per frame], problem (only
+//                      when an expression had no usable value somewhere)}],
 //                      camera: {eye, target, up, tan_half_fov} (the scene's
 //                      view as a rendition draws it, for a square picture)}
 //
@@ -40,7 +42,9 @@
 // lights as above, the poses, links and arrows (as poses has them) at
 // `rate` frames per second over the run (at most kMaxPlayerFrames), and the
 // camera `view` gives for a square picture
-// {eye, target, up, tan_half_fov}.
+// {eye, target, up, tan_half_fov}; with a `motion` that moves (the scene's
+// view with -follow, -trajectory or expressions) also cameras: [[eye target
+// up] per frame], that view's camera at each of the times.
 #pragma once
 
 #include <nlohmann/json.hpp>
@@ -54,6 +58,7 @@ class Session;
 namespace render {
 class SceneSampler;
 struct ViewState;
+class ViewMotion;
 }  // namespace render
 }  // namespace asgard
 
@@ -67,6 +72,6 @@ std::optional<nlohmann::json> Dispatch(const std::string& method, const nlohmann
 
 inline constexpr int kMaxPlayerFrames = 3000;
 nlohmann::json PlayerData(const render::SceneSampler& sampler, const render::ViewState& view,
-                          double rate);
+                          double rate, const render::ViewMotion* motion = nullptr);
 
 }  // namespace asgard::editor_rpc

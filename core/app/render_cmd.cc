@@ -7,11 +7,10 @@
 // Design: both commands simulate the whole scene first (the default view
 // frames the animation: render::SceneSampler::SceneBound), then sample poses
 // at the requested times through render::SceneSampler; a view element's
-// -follow or -trajectory (or --follow) moves the view centre per frame.  The output file's extension
-// chooses the writer.  Conventions follow `asgard simulate` (main.cc): usage
-// problems print the message and the help and exit 2; scene errors, solver
-// failures and write errors exit 1; a progress bar is shown on stderr for
-// multi-frame jobs when it is a terminal.
+// -follow or -trajectory (or --follow) moves the view centre per frame.  The output file's
+// extension chooses the writer.  Conventions follow `asgard simulate` (main.cc): usage problems
+// print the message and the help and exit 2; scene errors, solver failures and write errors exit 1;
+// a progress bar is shown on stderr for multi-frame jobs when it is a terminal.
 #include <unistd.h>
 
 #include <algorithm>
@@ -63,7 +62,8 @@ Picture:
   --fps F           movie playback rate (default: the scene's frame rate)
 
 View (default: the whole animation framed, tilted slightly, seen from +z):
-  --view NAME       use the scene's view element NAME
+  --view NAME       use the scene's view element NAME (its -follow, -trajectory
+                    and expressions of time or state move it frame by frame)
   --rot AX,AY,AZ    rotation of the scene, a rotation vector in degrees
   --scale S         zoom (1: the whole scene fits)
   --center X,Y,Z    centre of rotation and scaling (scene units)
@@ -234,18 +234,41 @@ int ParseCommon(const std::vector<std::string>& args, size_t& i, Common& c, std:
 struct Loaded {
   pipeline::Run run;
   std::unique_ptr<render::SceneSampler> sampler;
-  render::ViewState view;
+  std::optional<render::ViewMotion> motion;  // the scene's view (or the framing) over time
+  Common overrides;                          // --rot --scale --center --pan --follow
   std::vector<double> times;
-  int follow = -1;      // body index for --follow or view -follow
-  int trajectory = -1;  // curve index for view -trajectory
+  int follow = -1;  // body index for --follow
+  std::string file;
 
-  // The camera at time t: the view centre follows the body or trajectory.
-  render::Camera CameraAt(double t, int width, int height) const {
-    render::ViewState v = view;
+  // The view at time t: the scene's view element as it moves (its
+  // -follow, -trajectory and expressions), the command line's options
+  // over it.  An expression unusable at t is reported once.
+  render::ViewState ViewAt(double t) const {
+    std::string problem;
+    render::ViewState v = motion->At(t, &problem);
+    if (!problem.empty() && !warned) {
+      std::cerr << "asgard: " << file << ": warning: " << problem
+                << " (its default is used where it is)\n";
+      warned = true;
+    }
+    const Common& c = overrides;
+    if (c.rot_degrees) {
+      const Eigen::Vector3d r = *c.rot_degrees * (M_PI / 180.0);
+      v.rotation = r.norm() > 0 ? Eigen::Quaterniond(Eigen::AngleAxisd(r.norm(), r.normalized()))
+                                : Eigen::Quaterniond::Identity();
+    }
+    if (c.scale) v.scale = *c.scale;
+    if (c.center) v.center = *c.center;
+    if (c.pan) v.position = *c.pan;
     if (follow >= 0) v.center = sampler->Poses(t)[follow].p;
-    if (trajectory >= 0) v.center = run.equations->curves[trajectory]->Value(t);
-    return render::MakeCamera(v, width, height);
+    return v;
   }
+  render::Camera CameraAt(double t, int width, int height) const {
+    return render::MakeCamera(ViewAt(t), width, height);
+  }
+
+ private:
+  mutable bool warned = false;
 };
 
 // Handles args[i] when it is -h/--help or an option both commands take.
@@ -303,42 +326,22 @@ int Load(const Common& c, const char* help, bool movie, Loaded& l) {
   } else {
     l.times = {t0};
   }
-  const auto view = l.sampler->SceneView(c.view_name);
-  if (!view) return Usage("the scene has no view element named '" + c.view_name + "'", help);
-  l.view = *view;
-  if (c.rot_degrees) {
-    const Eigen::Vector3d r = *c.rot_degrees * (M_PI / 180.0);
-    l.view.rotation = r.norm() > 0 ? Eigen::Quaterniond(Eigen::AngleAxisd(r.norm(), r.normalized()))
-                                   : Eigen::Quaterniond::Identity();
-  }
-  if (c.scale) l.view.scale = *c.scale;
-  if (c.center) l.view.center = *c.center;
-  if (c.pan) l.view.position = *c.pan;
-  // The scene's view element may tie the centre to a body or a trajectory;
-  // --follow on the command line wins.
-  const scene::View* element = nullptr;
-  for (const auto& e : l.run.scene.views)
-    if (c.view_name.empty() || e.name == c.view_name) element = &e;
-  std::string follow = c.follow;
-  if (follow.empty() && element && !element->follow.empty()) follow = element->follow;
-  if (c.follow.empty() && element && !element->trajectory.empty()) {
-    const auto& ts = l.run.scene.trajectories;
-    for (size_t k = 0; k < ts.size(); ++k)
-      if (ts[k].name == element->trajectory) l.trajectory = static_cast<int>(k);
-    if (l.trajectory < 0) {
-      std::cerr << "asgard: " << c.file << ": view: no trajectory '" << element->trajectory << "'\n";
-      return 1;
-    }
-  }
-  if (!follow.empty()) {
+  const scene::View* element = l.sampler->FindView(c.view_name);
+  if (!c.view_name.empty() && !element)
+    return Usage("the scene has no view element named '" + c.view_name + "'", help);
+  l.motion.emplace(*l.sampler, element);
+  l.overrides = c;
+  l.file = c.file;
+  // --follow on the command line wins over the element's -follow or
+  // -trajectory (it sets the centre last).
+  if (!c.follow.empty()) {
     const auto& bodies = l.sampler->bodies();
     for (size_t b = 0; b < bodies.size(); ++b)
-      if (bodies[b].name == follow) l.follow = static_cast<int>(b);
-    if (l.follow < 0) {
-      if (!c.follow.empty()) return Usage("--follow: the scene has no body '" + follow + "'", help);
-      std::cerr << "asgard: " << c.file << ": view: no body '" << follow << "' to follow\n";
-      return 1;
-    }
+      if (bodies[b].name == c.follow) l.follow = static_cast<int>(b);
+    if (l.follow < 0) return Usage("--follow: the scene has no body '" + c.follow + "'", help);
+  } else if (!l.motion->error().empty()) {
+    std::cerr << "asgard: " << c.file << ": " << l.motion->error() << "\n";
+    return 1;
   }
   return -1;
 }
@@ -422,8 +425,9 @@ int RenderCommand(const std::vector<std::string>& args) {
     f.sampler = l.sampler.get();
     f.t = t;
     f.poses = l.sampler->Poses(t);
-    f.camera = l.CameraAt(t, c.width, c.height);
-    f.view_radius = l.view.radius / l.view.scale;
+    const render::ViewState view = l.ViewAt(t);
+    f.camera = render::MakeCamera(view, c.width, c.height);
+    f.view_radius = view.radius / view.scale;
     f.paths = &paths;
     return f;
   };

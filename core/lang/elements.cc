@@ -19,7 +19,9 @@
 #include <cmath>
 #include <memory>
 
+#include "core/expr/expr.h"
 #include "core/lang/options.h"
+#include "core/lang/source_map.h"
 
 namespace asgard::lang {
 
@@ -385,6 +387,44 @@ void LightSourceCommand(EvalContext& ctx, const Invocation& inv, std::string& na
   ctx.scene.lights.push_back(std::move(l));
 }
 
+namespace {
+
+// A view's -pos or -rot given as components that are not all numbers: the
+// component texts (expressions, checked by CheckViewExpressions once every
+// body and trajectory is known); nullopt when the option is absent or a
+// list of numbers (the constant, parsed as before).
+std::optional<std::vector<std::string>> ExpressionComponents(const Options& o, const char* name,
+                                                             std::initializer_list<int> counts,
+                                                             const char* form) {
+  const OptionValue* v = o.Get(name);
+  if (v == nullptr) return std::nullopt;
+  int n = 0;
+  Tcl_Obj** elems = nullptr;
+  if (Tcl_ListObjGetElements(nullptr, v->obj, &n, &elems) != TCL_OK) return std::nullopt;
+  bool numbers = true;
+  for (int i = 0; i < n && numbers; ++i) {
+    double d = 0;
+    numbers = Tcl_GetDoubleFromObj(nullptr, elems[i], &d) == TCL_OK;
+  }
+  if (numbers) return std::nullopt;
+  if (std::find(counts.begin(), counts.end(), n) == counts.end()) {
+    o.Fail(*v, std::string("expects ") + form +
+                   " (numbers or expressions of time and state), got " + std::to_string(n) +
+                   " components");
+  }
+  std::vector<std::string> texts;
+  for (int i = 0; i < n; ++i) {
+    texts.push_back(ObjString(elems[i]));
+    if (TrimCommandText(texts.back()).empty())
+      o.Fail(*v, "component " + std::to_string(i + 1) + " is empty");
+  }
+  return texts;
+}
+
+constexpr const char* kViewExpressionReason = "an expression of time or state (the view moves)";
+
+}  // namespace
+
 void ViewCommand(EvalContext& ctx, const Invocation& inv, std::string& name) {
   int first = OptionalName(inv, name);
   Options o(inv, first, {"pos", "rot", "scale", "center", "follow", "trajectory"});
@@ -392,16 +432,114 @@ void ViewCommand(EvalContext& ctx, const Invocation& inv, std::string& name) {
   scene::View v;
   FillBase(inv, v);
   v.name = name;
-  v.position = o.Vector("pos").value_or(v.position);
-  v.rotation = o.Rotation("rot").value_or(v.rotation);
-  v.scale = o.Positive("scale").value_or(v.scale);
+  if (auto e = ExpressionComponents(o, "pos", {3}, "3 components {x y z}"))
+    v.position_expr = std::move(*e);
+  else
+    v.position = o.Vector("pos").value_or(v.position);
+  if (auto e = ExpressionComponents(o, "rot", {3, 4},
+                                    "a rotation vector {x y z} or a quaternion {w x y z}"))
+    v.rotation_expr = std::move(*e);
+  else
+    v.rotation = o.Rotation("rot").value_or(v.rotation);
+  if (const OptionValue* s = o.Get("scale"); s != nullptr && !IsNumericLiteral(ObjString(s->obj))) {
+    v.scale_expr = ObjString(s->obj);
+    if (TrimCommandText(v.scale_expr).empty()) o.Fail(*s, "needs a number or an expression");
+  } else {
+    v.scale = o.Positive("scale").value_or(v.scale);
+  }
   v.center = o.Vector("center");
   v.follow = o.String("follow").value_or("");
   v.trajectory = o.String("trajectory").value_or("");
   if (!v.follow.empty() && !v.trajectory.empty())
     throw ElementError{"view: give -follow or -trajectory, not both", o.Get("trajectory")->arg};
   RecordOptions(inv, o, v);
+  // An expression is not a literal a handle can rewrite: say why.
+  for (auto& [key, word] : v.options)
+    if ((key == "pos" && !v.position_expr.empty()) || (key == "rot" && !v.rotation_expr.empty()) ||
+        (key == "scale" && !v.scale_expr.empty())) {
+      word.literal = false;
+      word.reason = kViewExpressionReason;
+    }
   ctx.scene.views.push_back(std::move(v));
+}
+
+namespace {
+
+// Names a view expression may use, as the force expressions have them
+// (docs/language.md, Expressions): a body's state, mass and inertia, a
+// trajectory's value and derivatives.
+bool ViewNameKnown(const scene::Scene& s, std::string_view name) {
+  const size_t dot = name.find('.');
+  if (dot == std::string_view::npos) return false;
+  const std::string owner(name.substr(0, dot));
+  const std::string_view field = name.substr(dot + 1);
+  static constexpr std::string_view kBody[] = {
+      "x",  "y",  "z",  "dx", "dy", "dz", "vx",   "vy",  "vz",  "qw",  "qx",  "qy",  "qz",
+      "wx", "wy", "wz", "w1", "w2", "w3", "mass", "Ixx", "Iyy", "Izz", "Ixy", "Ixz", "Iyz"};
+  static constexpr std::string_view kCurve[] = {"x",  "y",   "z",   "dx", "dy",
+                                                "dz", "ddx", "ddy", "ddz"};
+  auto in = [&](const auto& names) {
+    return std::find(std::begin(names), std::end(names), field) != std::end(names);
+  };
+  if (s.FindBody(owner)) return in(kBody);
+  if (s.FindTrajectory(owner)) return in(kCurve);
+  return false;
+}
+
+// Where component `k` of a view option is in the source: the option's word
+// narrowed to the component's text when it can be found there (the words
+// before it skipped), and to the character `offset` into it.
+scene::SourceSpan ComponentSpan(const EvalContext& ctx, const scene::Word* word,
+                                const std::vector<std::string>& texts, size_t k, int offset) {
+  if (word == nullptr || !word->span.known()) return {};
+  const std::string_view source =
+      ctx.map.text().substr(word->span.begin, word->span.end - word->span.begin);
+  size_t from = 0;
+  for (size_t i = 0; i <= k; ++i) {
+    const size_t at = source.find(texts[i], from);
+    if (at == std::string_view::npos) return word->span;
+    if (i == k) {
+      const int begin = word->span.begin + static_cast<int>(at) + offset;
+      return ctx.map.lines().Span(
+          begin, std::max(begin + 1, word->span.begin + static_cast<int>(at + texts[i].size())));
+    }
+    from = at + texts[i].size();
+  }
+  return word->span;
+}
+
+}  // namespace
+
+void CheckViewExpressions(EvalContext& ctx) {
+  scene::Scene& s = ctx.scene;
+  expr::Pool pool;
+  const expr::Resolver resolve = [&s](std::string_view name, expr::Pool& p) {
+    return ViewNameKnown(s, name) ? std::optional<expr::NodeId>(p.Var(0)) : std::nullopt;
+  };
+  auto bad = [&](const scene::View& v) {
+    bool failed = false;
+    auto check = [&](const char* key, const std::vector<std::string>& texts) {
+      for (size_t k = 0; k < texts.size(); ++k) {
+        try {
+          expr::Parse(texts[k], pool, resolve);
+        } catch (const expr::ParseError& e) {
+          std::string what = "view";
+          if (!v.name.empty()) what += " '" + v.name + "'";
+          what += std::string(": in -") + key;
+          if (texts.size() > 1) what += " component " + std::to_string(k + 1);
+          const scene::SourceSpan span = ComponentSpan(ctx, v.option(key), texts, k, e.offset());
+          ctx.AddError(what + " expression '" + texts[k] + "': " + e.what(),
+                       span.known() ? span : v.command);
+          failed = true;
+        }
+      }
+    };
+    check("pos", v.position_expr);
+    check("rot", v.rotation_expr);
+    if (!v.scale_expr.empty()) check("scale", {v.scale_expr});
+    return failed;
+  };
+  s.views.erase(std::remove_if(s.views.begin(), s.views.end(), bad), s.views.end());
 }
 
 // ---------------------------------------------------------------------------

@@ -19,6 +19,11 @@ void TrajectoryCommand(EvalContext& ctx, const Invocation& inv, std::string& nam
 void LightSourceCommand(EvalContext& ctx, const Invocation& inv, std::string& name);
 void ViewCommand(EvalContext& ctx, const Invocation& inv, std::string& name);
 
+// After the script ran (bodies and trajectories known): parses the
+// expressions of every view's -pos, -rot and -scale, reports each error at
+// its component and drops views that have one.
+void CheckViewExpressions(EvalContext& ctx);
+
 // Fills the ElementBase fields common to all elements.
 void FillBase(const Invocation& inv, scene::ElementBase& base);
 

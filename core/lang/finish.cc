@@ -10,6 +10,7 @@
 // message that says whether the body is unknown or failed earlier.
 #include <algorithm>
 
+#include "core/lang/elements.h"
 #include "core/lang/eval_context.h"
 
 namespace asgard::lang {
@@ -116,6 +117,7 @@ void FinishScene(EvalContext& ctx) {
   });
   DropIf(s.forces, [&](const scene::Force& f) { return !body_ok(f, "force", "body", f.body); });
   DropIf(s.torques, [&](const scene::Torque& t) { return !body_ok(t, "torque", "body", t.body); });
+  CheckViewExpressions(ctx);
 }
 
 }  // namespace asgard::lang

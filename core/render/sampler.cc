@@ -13,6 +13,7 @@
 #include <algorithm>
 #include <cmath>
 #include <map>
+#include <sstream>
 
 #include "core/expr/expr.h"
 #include "core/physics/trajectory.h"
@@ -59,6 +60,35 @@ Pose ToPose(const pipeline::BodyFrame& f) {
 
 Eigen::Vector3d ToVec(const scene::Vec3& v) { return {v[0], v[1], v[2]}; }
 
+// The overlay and view expressions' name table: a body's state (Var(b ·
+// kSlots + slot), filled by StateValues), mass and inertia (constants), a
+// trajectory's value and derivatives (its curve's external functions).
+std::optional<expr::NodeId> ResolveName(
+    std::string_view name, expr::Pool& pool, const physics::EquationSystem& eq,
+    const std::map<std::string, int, std::less<>>& curve_index) {
+  const size_t dot = name.rfind('.');
+  if (dot == std::string_view::npos) return std::nullopt;
+  const std::string owner(name.substr(0, dot));
+  const std::string_view field = name.substr(dot + 1);
+  if (const int b = eq.FindBody(owner); b >= 0) {
+    const auto& m = eq.bodies[b];
+    if (field == "mass") return pool.Const(m.mass);
+    static const char* kInertia[] = {"Ixx", "Ixy", "Ixz", "Iyx", "Iyy", "Iyz", "Izx", "Izy", "Izz"};
+    for (int k = 0; k < 9; ++k)
+      if (field == kInertia[k]) return pool.Const(m.inertia(k / 3, k % 3));
+    const auto it = SlotNames().find(field);
+    if (it == SlotNames().end()) return std::nullopt;
+    return pool.Var(b * kSlots + it->second);
+  }
+  const auto c = curve_index.find(owner);
+  if (c == curve_index.end()) return std::nullopt;
+  int order = 0;
+  std::string_view axis = field;
+  while (!axis.empty() && axis[0] == 'd') ++order, axis.remove_prefix(1);
+  if (axis.size() != 1 || axis[0] < 'x' || axis[0] > 'z' || order > 2) return std::nullopt;
+  return pool.Extern(physics::CurveFunction(c->second, axis[0] - 'x'), order);
+}
+
 }  // namespace
 
 Eigen::Matrix4d Pose::Matrix() const {
@@ -80,28 +110,7 @@ struct SceneSampler::Evaluator {
   expr::ExternFn externs;
 
   std::optional<expr::NodeId> Resolve(std::string_view name, const physics::EquationSystem& eq) {
-    const size_t dot = name.rfind('.');
-    if (dot == std::string_view::npos) return std::nullopt;
-    const std::string owner(name.substr(0, dot));
-    const std::string_view field = name.substr(dot + 1);
-    if (const int b = eq.FindBody(owner); b >= 0) {
-      const auto& m = eq.bodies[b];
-      if (field == "mass") return pool.Const(m.mass);
-      static const char* kInertia[] = {"Ixx", "Ixy", "Ixz", "Iyx", "Iyy",
-                                       "Iyz", "Izx", "Izy", "Izz"};
-      for (int k = 0; k < 9; ++k)
-        if (field == kInertia[k]) return pool.Const(m.inertia(k / 3, k % 3));
-      const auto it = SlotNames().find(field);
-      if (it == SlotNames().end()) return std::nullopt;
-      return pool.Var(b * kSlots + it->second);
-    }
-    const auto c = curve_index.find(owner);
-    if (c == curve_index.end()) return std::nullopt;
-    int order = 0;
-    std::string_view axis = field;
-    while (!axis.empty() && axis[0] == 'd') ++order, axis.remove_prefix(1);
-    if (axis.size() != 1 || axis[0] < 'x' || axis[0] > 'z' || order > 2) return std::nullopt;
-    return pool.Extern(physics::CurveFunction(c->second, axis[0] - 'x'), order);
+    return ResolveName(name, pool, eq, curve_index);
   }
 
   // Parses three texts; on success appends them to `outputs` and returns the
@@ -281,12 +290,21 @@ Bound SceneSampler::SceneBound() const {
   return bound;
 }
 
-std::optional<ViewState> SceneSampler::SceneView(const std::string& name) const {
+const scene::View* SceneSampler::FindView(const std::string& name) const {
   const scene::View* chosen = nullptr;
   for (const auto& e : scene_.views)
     if (name.empty() || e.name == name) chosen = &e;
+  return chosen;
+}
+
+std::optional<ViewState> SceneSampler::SceneView(const std::string& name) const {
+  const scene::View* chosen = FindView(name);
   if (!name.empty() && !chosen) return std::nullopt;
   return ElementView(chosen);
+}
+
+ViewMotion SceneSampler::Motion(const scene::View* element) const {
+  return ViewMotion(*this, element);
 }
 
 ViewState SceneSampler::ElementView(const scene::View* element) const {
@@ -341,6 +359,99 @@ std::vector<double> StateValues(const physics::EquationSystem& eq, const solver:
 }
 
 }  // namespace
+
+ViewMotion::ViewMotion(const SceneSampler& sampler, const scene::View* element)
+    : sampler_(sampler), base_(sampler.ElementView(element)) {
+  if (!element) return;
+  label_ = element->name.empty() ? "view" : "view '" + element->name + "'";
+  const physics::EquationSystem& eq = sampler.equations_;
+  if (!element->follow.empty()) {
+    follow_ = eq.FindBody(element->follow);
+    if (follow_ < 0) error_ = label_ + ": no body '" + element->follow + "' to follow";
+  }
+  const auto& curves = sampler.eval_->curve_index;
+  if (!element->trajectory.empty()) {
+    const auto c = curves.find(element->trajectory);
+    if (c == curves.end())
+      error_ = label_ + ": no trajectory '" + element->trajectory + "'";
+    else
+      curve_ = c->second;
+  }
+  if (!element->animated()) return;
+  std::vector<expr::NodeId> outputs;
+  auto add = [&](const char* option, const std::vector<std::string>& texts) {
+    if (texts.empty()) return -1;
+    const int first = static_cast<int>(outputs.size());
+    for (const std::string& text : texts) {
+      try {
+        outputs.push_back(expr::Parse(text, pool_, [&](std::string_view n, expr::Pool& p) {
+          return ResolveName(n, p, eq, curves);
+        }));
+      } catch (const expr::ParseError& e) {
+        error_ = label_ + ": -" + option + " expression '" + text + "': " + e.what();
+        outputs.push_back(pool_.Const(0));
+      }
+    }
+    return first;
+  };
+  pos_ = add("pos", element->position_expr);
+  rot_ = add("rot", element->rotation_expr);
+  rot_count_ = static_cast<int>(element->rotation_expr.size());
+  if (!element->scale_expr.empty()) scale_ = add("scale", {element->scale_expr});
+  outputs_ = outputs.size();
+  tape_ = expr::Tape::Compile(pool_, outputs);
+}
+
+ViewState ViewMotion::At(double t, std::string* problem) const {
+  ViewState v = base_;
+  if (follow_ >= 0) v.center = sampler_.Poses(t)[follow_].p;
+  if (curve_ >= 0) v.center = sampler_.eval_->curves[curve_].Value(t);
+  if (!tape_) return v;
+  const auto x = StateValues(sampler_.equations_, sampler_.simulation_, t, sampler_.bodies_.size());
+  std::vector<double> out(outputs_);
+  tape_->Evaluate(t, x.data(), out.data(), &sampler_.eval_->externs);
+  auto unusable = [&](const char* option, const std::string& why) {
+    if (problem && problem->empty()) {
+      std::ostringstream s;
+      s << label_ << ": -" << option << " " << why << " at t = " << t;
+      *problem = s.str();
+    }
+  };
+  if (pos_ >= 0) {
+    const Eigen::Vector3d p(out[pos_], out[pos_ + 1], out[pos_ + 2]);
+    if (p.allFinite())
+      v.position = p;
+    else
+      unusable("pos", "is not finite");
+  }
+  if (rot_ >= 0) {
+    Eigen::Quaterniond q = Eigen::Quaterniond::Identity();
+    bool ok = true;
+    if (rot_count_ == 4) {
+      const Eigen::Vector4d c(out[rot_], out[rot_ + 1], out[rot_ + 2], out[rot_ + 3]);
+      ok = c.allFinite() && c.norm() > 1e-12;
+      if (ok) q = Eigen::Quaterniond(c[0], c[1], c[2], c[3]).normalized();
+    } else {
+      const Eigen::Vector3d r(out[rot_], out[rot_ + 1], out[rot_ + 2]);
+      ok = r.allFinite();
+      if (ok && r.norm() > 0) q = Eigen::Quaterniond(Eigen::AngleAxisd(r.norm(), r.normalized()));
+    }
+    if (ok)
+      v.rotation = q;
+    else
+      unusable("rot", rot_count_ == 4 ? "is a zero or non-finite quaternion" : "is not finite");
+  }
+  if (scale_ >= 0) {
+    if (std::isfinite(out[scale_]) && out[scale_] > 0) {
+      v.scale = out[scale_];
+    } else {
+      std::ostringstream s;
+      s << "is " << out[scale_] << " (it must be greater than 0)";
+      unusable("scale", s.str());
+    }
+  }
+  return v;
+}
 
 std::vector<Segment> SceneSampler::LinkSegments(double t, const std::vector<Pose>& poses) const {
   const auto& eq = equations_;

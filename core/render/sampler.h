@@ -59,6 +59,8 @@ struct Bound {
   double radius = 1.0;
 };
 
+class ViewMotion;
+
 class SceneSampler {
  public:
   // The simulation must have run to its end; all three must outlive the
@@ -91,9 +93,14 @@ class SceneSampler {
   // options of the scene's last `view` element (or the one named `name`)
   // overriding it.  Returns nullopt when `name` is given and not found.
   std::optional<ViewState> SceneView(const std::string& name = "") const;
-  // The view of one `view` element (null: the framing view alone); its
-  // -follow and -trajectory are the caller's (they move the centre per frame).
+  // The view of one `view` element (null: the framing view alone) from its
+  // constant options; see Motion for one that moves.
   ViewState ElementView(const scene::View* element) const;
+  // The scene's last `view` element, or the one named `name`; null when
+  // there is none (or none of that name).
+  const scene::View* FindView(const std::string& name = "") const;
+  // The camera motion of a `view` element (null: the framing view).
+  ViewMotion Motion(const scene::View* element) const;
   // The scene's light sources (empty: the caller adds DefaultLight).
   std::vector<Light> SceneLights() const;
 
@@ -111,6 +118,7 @@ class SceneSampler {
   std::vector<std::vector<Eigen::Vector3d>> Paths(const std::vector<double>& times) const;
 
  private:
+  friend class ViewMotion;
   struct Evaluator;
   const scene::Scene& scene_;
   const physics::EquationSystem& equations_;
@@ -120,6 +128,40 @@ class SceneSampler {
   std::vector<std::string> unknown_colors_;
   std::unique_ptr<Evaluator> eval_;
   mutable std::optional<Bound> bound_;
+};
+
+// One `view` element's camera over time (seed 4.1.7): the framing view
+// with the element's constant options, its -pos, -rot and -scale
+// expressions of time and state evaluated at t (parsed once with the
+// overlays' name table into one tape: the expression module, as forces),
+// and its centre on -follow's body or -trajectory's curve.  The sampler must
+// outlive it.
+class ViewMotion {
+ public:
+  ViewMotion(const SceneSampler& sampler, const scene::View* element);
+
+  // The view at time t.  An expression whose value is unusable there (not
+  // finite, a -scale <= 0, a zero quaternion) leaves that option at its
+  // default and, when `problem` is given, says so in it.
+  ViewState At(double t, std::string* problem = nullptr) const;
+  // Whether the view changes over time (-follow, -trajectory, expressions).
+  bool moves() const { return follow_ >= 0 || curve_ >= 0 || tape_.has_value(); }
+  // Why the element cannot be followed (an unknown body or trajectory, an
+  // expression the name table cannot resolve); empty when it can.
+  const std::string& error() const { return error_; }
+
+ private:
+  const SceneSampler& sampler_;
+  std::string label_;  // "view 'NAME'" in messages
+  ViewState base_;
+  int follow_ = -1;                       // body index
+  int curve_ = -1;                        // trajectory curve index (the sampler's)
+  int pos_ = -1, rot_ = -1, scale_ = -1;  // first tape output of each expression
+  int rot_count_ = 0;                     // 3: rotation vector; 4: quaternion
+  expr::Pool pool_;
+  std::optional<expr::Tape> tape_;
+  size_t outputs_ = 0;
+  std::string error_;
 };
 
 }  // namespace asgard::render

@@ -109,10 +109,10 @@ struct Simulator : ElementBase {
 struct ShapePiece {
   enum class Kind : uint8_t { kSphere, kHull };
   Kind kind = Kind::kHull;
-  Vec3 center{0, 0, 0};           // sphere centre (kSphere)
-  double radius = 0.0;            // sphere radius (kSphere)
-  std::vector<Vec3> points;       // hull input points (kHull), already offset by -pos
-  std::string color;              // optional per-piece colour
+  Vec3 center{0, 0, 0};      // sphere centre (kSphere)
+  double radius = 0.0;       // sphere radius (kSphere)
+  std::vector<Vec3> points;  // hull input points (kHull), already offset by -pos
+  std::string color;         // optional per-piece colour
 };
 
 // shape_set NAME -desc DESC
@@ -129,7 +129,7 @@ struct Body : ElementBase {
   Vec3 init_pos{0, 0, 0};
   Quat init_rot{1, 0, 0, 0};  // normalised
   Vec3 init_dpos{0, 0, 0};
-  Vec3 init_drot{0, 0, 0};    // world-frame angular velocity
+  Vec3 init_drot{0, 0, 0};  // world-frame angular velocity
   std::optional<double> mass;
   // Moment of inertia about the centre of mass, in shape axes: a scalar
   // (isotropic), three principal values, or a full row-major 3x3 tensor.
@@ -208,6 +208,12 @@ struct LightSource : ElementBase {
 // view ?NAME? -pos V -rot R -scale S -center V ?-follow BODY? ?-trajectory T?
 //   -follow / -trajectory tie the centre of rotation and scaling to a body's
 //   centre of mass or a trajectory's value over time (camera motion, seed 4.1.7).
+//   -pos, -rot and -scale may also be expressions of time and state (core/expr
+//   syntax, the names of force expressions): -pos a list of three component
+//   texts ({0 0 {10 + t}}), -rot of three (rotation vector) or four
+//   (quaternion), -scale one text.  Such an option keeps its texts in the
+//   *_expr member (numbers among them stay texts) and is evaluated at every
+//   frame by whoever draws the view; its constant member keeps the default.
 struct View : ElementBase {
   Vec3 position{0, 0, 0};
   Quat rotation{1, 0, 0, 0};
@@ -215,6 +221,13 @@ struct View : ElementBase {
   std::optional<Vec3> center;
   std::string follow;
   std::string trajectory;
+  std::vector<std::string> position_expr;  // empty, or 3 texts
+  std::vector<std::string> rotation_expr;  // empty, or 3 or 4 texts
+  std::string scale_expr;                  // empty: -scale is `scale`
+
+  bool animated() const {
+    return !position_expr.empty() || !rotation_expr.empty() || !scale_expr.empty();
+  }
 };
 
 enum class Severity : uint8_t { kError, kWarning };

@@ -269,6 +269,45 @@ TEST(Slave, SimulatesAndServesTwoRenditionsFromOneProcess) {
   EXPECT_NE(std::string(e.message).find("unknown command"), std::string::npos);
 }
 
+// A rendition draws the scene's view as it is at the frame's time: here a
+// view whose -pos is an expression of time (seed 4.1.7) looks at (−t/2, 0,
+// 0), so a still red ball at the origin moves right across the picture.
+TEST(Slave, ARenditionDrawsAMovingViewAtEachTime) {
+  Node n;
+  ASSERT_EQ(Create("simulator -finish 1 -collisions 0\n"
+                   "shape_set ball -desc {-sub {-sphere 0.5}}\n"
+                   "body b -shape ball -static 1 -color red\n"
+                   "view -rot {0 0 0} -center {0 0 0} -scale 0.5 -pos {{t / 2} 0 0}\n",
+                   n),
+            ASGARD_OK);
+  asgard_error e{};
+  ASSERT_EQ(Asgard().node()->simulate(n.node, nullptr, nullptr, &e), ASGARD_OK) << e.message;
+  asgard_rendition* r = nullptr;
+  ASSERT_EQ(Asgard().rendition()->create(n.node, "v", ASGARD_DEVICE_PAGE, 64, 48, &r, &e),
+            ASGARD_OK);
+  auto red_x = [&](double t) {
+    asgard_frame f{};
+    f.struct_size = sizeof f;
+    EXPECT_EQ(Asgard().rendition()->frame(r, t, &f, &e), ASGARD_OK) << e.message;
+    double sx = 0, count = 0;
+    for (int y = 0; y < f.height; ++y)
+      for (int x = 0; x < f.width; ++x) {
+        const uint8_t* p = f.pixels + y * f.stride + 4 * x;
+        if (p[0] > 120 && p[1] < 80 && p[2] < 80) sx += x, ++count;
+      }
+    EXPECT_GT(count, 20) << "the ball at t = " << t;
+    return count > 0 ? sx / count : 0.0;
+  };
+  const double x0 = red_x(0), x1 = red_x(1);
+  EXPECT_NEAR(x0, 31.5, 1.5) << "in the middle at t = 0";
+  // The framing radius is the ball's, 0.5; at scale 0.5 the eye is 4 × 0.5 /
+  // 0.5 = 4 units from the point looked at and the half height of 24 pixels
+  // spans 4 · 1.06 tan(asin(1/4)) units there (render/view.cc), of which the
+  // view moved 0.5 by t = 1.
+  const double want = 0.5 / (4 * 1.06 * std::tan(std::asin(0.25))) * 24;
+  EXPECT_NEAR(x1 - x0, want, 0.1 * want) << "moved right by 0.5 at t = 1";
+}
+
 TEST(Slave, SceneErrorsAreReportedWithLineAndColumn) {
   Node n;
   EXPECT_EQ(Create("simulator -finish 1\nbody b -shape nope\n", n), ASGARD_ERR_SCENE);

@@ -155,6 +155,16 @@ std::vector<BadInput> Catalogue() {
        "body 'a' was not created because of an earlier error"},
       {"ZeroLightDirection", "lightsource -dir {0 0 0}\n", 1, 18, "zero vector"},
       {"ViewScaleZero", "view -scale 0\n", 1, 13, "must be greater than 0"},
+      // View options given as expressions (seed 4.1.7): checked once every
+      // body is known, each error at its component.
+      {"ViewExpressionWithAnUnknownName", B("body b -shape box\nview -pos {0 0 {10 + q}}\n"), 3, 22,
+       "view: in -pos component 3 expression '10 + q': unknown name 'q'"},
+      {"ViewExpressionOfAnUnknownBody", B("view v -pos {{nobody.x} 0 0}\n"), 2, 15,
+       "view 'v': in -pos component 1 expression 'nobody.x': unknown name 'nobody.x'"},
+      {"ViewScaleExpressionCutShort", "view -scale {1 +}\n", 1, 17, "in -scale expression '1 +'"},
+      {"ViewRotationExpressionOfTwoComponents", "view -rot {0 {t}}\n", 1, 11,
+       "expects a rotation vector {x y z} or a quaternion {w x y z} (numbers or expressions of "
+       "time and state), got 2 components"},
       {"OptionNameExpected", B("body b1 -shape box 12\n"), 2, 20, "expected an option name"},
       // Element options and their values.
       {"RestitutionAboveOne", B("body b1 -shape box -restitution 2\n"), 2, 33,

@@ -448,6 +448,24 @@ std::vector<CleanScene> OptionsCases() {
          ASSERT_EQ(s.views.size(), 1u);
          EXPECT_DOUBLE_EQ(s.views[0].scale, 2.0);
          EXPECT_TRUE(s.views[0].center.has_value());
+         EXPECT_FALSE(s.views[0].animated());
+       }},
+      {"ViewOptionsAsExpressionsOfTimeAndState",
+       // A view may name a body defined further down.
+       "view up -pos {0 0 {10 + t}} -rot {1 0 0 {b.qz}} -scale {1 + b.x / 2}\n"
+       "shape_set box -desc {-sub {-box {1 1 1}}}\n"
+       "body b -shape box\n",
+       [](const Scene& s, const std::string&) {
+         ASSERT_EQ(s.views.size(), 1u);
+         const scene::View& v = s.views[0];
+         EXPECT_TRUE(v.animated());
+         EXPECT_EQ(v.position_expr, (std::vector<std::string>{"0", "0", "10 + t"}));
+         EXPECT_EQ(v.rotation_expr, (std::vector<std::string>{"1", "0", "0", "b.qz"}));
+         EXPECT_EQ(v.scale_expr, "1 + b.x / 2");
+         const scene::Word* pos = v.option("pos");
+         ASSERT_NE(pos, nullptr);
+         EXPECT_FALSE(pos->literal);
+         EXPECT_EQ(pos->reason, "an expression of time or state (the view moves)");
        }},
   };
 }

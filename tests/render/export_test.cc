@@ -321,9 +321,11 @@ TEST(RenderCli, NumberedFramesAndStills) {
   EXPECT_NE(out.find("5 animation samples"), std::string::npos) << out;
 }
 
-
 // A view element with -follow keeps the followed body at the centre of every
-// frame while the rest of the scene moves past.
+// frame while the rest of the scene moves past; so do views whose -pos is an
+// expression of the body's state (seed 4.1.7: the point looked at is
+// c − Rᵀ·pos = the body) or of time (the ball is at (4t, 3, 0)).  Two frames
+// of one run (--frames) each.
 TEST(Cli, ViewFollowKeepsTheBodyCentred) {
   const std::string dir = t::ScratchDir("follow");
   const std::string scene = dir + "/follow.al";
@@ -334,29 +336,33 @@ TEST(Cli, ViewFollowKeepsTheBodyCentred) {
            "body b -shape ball -init_pos {0 3 0} -init_dpos {4 0 0} -color red\n"
            "body f -shape floor -static 1 -init_pos {10 -0.1 0} -color gray\n"
            "view cam -follow b -scale 3 -rot {0 0 0}\n"
+           "view state -center {0 0 0} -scale 3 -rot {0 0 0} -pos {{-b.x} {-b.y} {-b.z}}\n"
+           "view clock -center {0 0 0} -scale 3 -rot {0 0 0} -pos {{-4 * t} -3 0}\n"
            "simulator -finish 3\n";
   }
-  for (double t : {0.5, 2.5}) {
-    const std::string png = dir + "/f" + std::to_string(static_cast<int>(10 * t)) + ".png";
-    ASSERT_EQ(Asgard("render '" + scene + "' -t " + std::to_string(t) + " --size 160x120 -o '" +
-                     png + "'"),
+  for (const char* view : {"cam", "state", "clock"}) {
+    const std::string png = dir + "/" + view + ".png";
+    ASSERT_EQ(Asgard("render '" + scene + "' --view " + view +
+                     " --frames 0.5:2.5:2 --size 160x120 -o '" + png + "'"),
               0);
-    const auto img = render::ReadPng(png);
-    ASSERT_TRUE(img.has_value());
-    // Centroid of the red pixels.
-    double sx = 0, sy = 0, n = 0;
-    for (int y = 0; y < img->height; ++y)
-      for (int x = 0; x < img->width; ++x) {
-        const uint8_t* p = img->Pixel(x, y);
-        if (p[0] > 150 && p[1] < 90 && p[2] < 90) {
-          sx += x;
-          sy += y;
-          ++n;
+    for (int frame = 0; frame < 2; ++frame) {
+      const auto img = render::ReadPng(FramePath(png, frame, 2));
+      ASSERT_TRUE(img.has_value()) << view << " frame " << frame;
+      // Centroid of the red pixels.
+      double sx = 0, sy = 0, n = 0;
+      for (int y = 0; y < img->height; ++y)
+        for (int x = 0; x < img->width; ++x) {
+          const uint8_t* p = img->Pixel(x, y);
+          if (p[0] > 150 && p[1] < 90 && p[2] < 90) {
+            sx += x;
+            sy += y;
+            ++n;
+          }
         }
-      }
-    ASSERT_GT(n, 10) << "no ball at t=" << t;
-    EXPECT_NEAR(sx / n, 80, 2) << "t=" << t;
-    EXPECT_NEAR(sy / n, 60, 2) << "t=" << t;
+      ASSERT_GT(n, 10) << "no ball in " << view << " frame " << frame;
+      EXPECT_NEAR(sx / n, 80, 2) << view << " frame " << frame;
+      EXPECT_NEAR(sy / n, 60, 2) << view << " frame " << frame;
+    }
   }
 }
 

@@ -180,6 +180,100 @@ TEST(EditorRpc, ViewCamerasFollowTheirBodyAndLightsComeWithTheMeshes) {
   EXPECT_NEAR(light["intensity"].get<double>(), 0.5, 1e-12);
 }
 
+// Seed 4.1.7: views whose -pos, -rot and -scale are expressions of time and
+// of a body's state, evaluated at every frame of the pose stream.  With -rot
+// R and -center c the camera looks at c − Rᵀ·pos from kEyeDistance · radius /
+// scale along Rᵀ·ẑ, with Rᵀ·ŷ up (render/view.h).
+TEST(EditorRpc, ViewsWhoseOptionsAreExpressionsMoveTheirCameraEveryFrame) {
+  const std::string text = kScene +
+                           "view lift -center {0 0 0} -rot {0 0 {t}} -pos {0 0 {10 + t}} "
+                           "-scale {1 + t}\n"
+                           "view track -rot {0 0 0} -center {0 0 0} -pos {{-a.x} {-a.y} {-a.z}}\n"
+                           "view still -rot {0 0 0} -pos {1 2 3}\n";
+  session::Session s(text);
+  ASSERT_TRUE(s.Simulate());
+  const pipeline::Run& run = *s.run();
+  render::SceneSampler sampler(run.scene, *run.equations, *run.simulation);
+  const json poses = *Dispatch("poses", json::object(), &s, &sampler);
+  ASSERT_EQ(poses["views"].size(), 3u);
+  const json &lift = poses["views"][0], &track = poses["views"][1], &still = poses["views"][2];
+  EXPECT_TRUE(lift["moves"].get<bool>());
+  EXPECT_EQ(lift["expressions"], json({"pos", "rot", "scale"}));
+  EXPECT_TRUE(track["moves"].get<bool>());
+  EXPECT_EQ(track["expressions"], json({"pos"}));
+  EXPECT_FALSE(still["moves"].get<bool>());
+  EXPECT_TRUE(still["expressions"].empty());
+  EXPECT_FALSE(lift.contains("problem"));
+  const double radius = sampler.SceneBound().radius;
+  // The frame times unrounded (the stream's are rounded to 1e-6, as every
+  // value in it: hence the tolerance).
+  const std::vector<double> times = sampler.FrameTimes();
+  ASSERT_EQ(times.size(), poses["times"].size());
+  ASSERT_GE(times.size(), 5u);
+  const double tol = 1e-6;
+  for (size_t k = 0; k < times.size(); ++k) {
+    const double t = times[k];
+    const json& cam = lift["cameras"][k];
+    // Target −Rᵀ(0 0 10+t) = (0 0 −10−t) (R turns about z); eye kEyeDistance ·
+    // radius / (1 + t) above it; up Rᵀŷ = (sin t, cos t, 0).
+    const double distance = render::kEyeDistance * radius / (1 + t);
+    const double want_target[3] = {0, 0, -10 - t};
+    const double want_eye[3] = {0, 0, -10 - t + distance};
+    const double want_up[3] = {std::sin(t), std::cos(t), 0};
+    for (int c = 0; c < 3; ++c) {
+      EXPECT_NEAR(cam[1][c].get<double>(), want_target[c], tol) << "target at t = " << t;
+      EXPECT_NEAR(cam[0][c].get<double>(), want_eye[c], tol) << "eye at t = " << t;
+      EXPECT_NEAR(cam[2][c].get<double>(), want_up[c], tol) << "up at t = " << t;
+    }
+    // track looks at body a's sampled position: c − (−a) = a.  Body a
+    // falls from (1 2 3) at 1 unit/s² (its gravitational force is −1 · mass
+    // along y), so a.y = 2 − t²/2 within the solver's tolerance.
+    for (int c = 0; c < 3; ++c)
+      EXPECT_NEAR(track["cameras"][k][1][c].get<double>(), poses["poses"][k][c].get<double>(), tol)
+          << "track's target is a's sampled position at t = " << t;
+    EXPECT_NEAR(track["cameras"][k][1][1].get<double>(), 2 - t * t / 2, 1e-4) << "t = " << t;
+    // still: the same camera at every frame.
+    EXPECT_EQ(still["cameras"][k], still["cameras"][0]);
+  }
+}
+
+// The exported page's data carries the scene's view per frame when it moves
+// (and not when it stands still).
+TEST(EditorRpc, PlayerDataCarriesAMovingViewsCameraAtEachFrame) {
+  session::Session s(kScene + "view lift -center {0 0 0} -rot {0 0 0} -pos {0 0 {10 + t}}\n");
+  ASSERT_TRUE(s.Simulate());
+  const pipeline::Run& run = *s.run();
+  render::SceneSampler sampler(run.scene, *run.equations, *run.simulation);
+  const render::ViewMotion motion = sampler.Motion(sampler.FindView());
+  const json data = PlayerData(sampler, *sampler.SceneView(), 10, &motion);
+  ASSERT_EQ(data["cameras"].size(), data["times"].size());
+  ASSERT_EQ(data["times"].size(), 11u);
+  for (size_t k = 0; k < data["times"].size(); ++k) {
+    const double t = data["times"][k].get<double>();
+    EXPECT_NEAR(data["cameras"][k][1][2].get<double>(), -10 - t, 1e-6) << "t = " << t;
+  }
+  const render::ViewMotion framing = sampler.Motion(nullptr);
+  EXPECT_FALSE(PlayerData(sampler, *sampler.SceneView(), 10, &framing).contains("cameras"));
+}
+
+// An expression with no usable value at some frame (-scale <= 0) leaves the
+// option at its default there and says where.
+TEST(EditorRpc, AViewExpressionWithoutAUsableValueSaysWhen) {
+  session::Session s(kScene + "view shrink -scale {1 - 2 * t}\n");
+  ASSERT_TRUE(s.Simulate());
+  const pipeline::Run& run = *s.run();
+  render::SceneSampler sampler(run.scene, *run.equations, *run.simulation);
+  const render::ViewMotion motion = sampler.Motion(&run.scene.views[0]);
+  std::string problem;
+  EXPECT_NEAR(motion.At(0.25, &problem).scale, 0.5, 1e-12);
+  EXPECT_TRUE(problem.empty());
+  EXPECT_EQ(motion.At(0.75, &problem).scale, 1.0) << "the default";
+  EXPECT_NE(problem.find("view 'shrink': -scale is -0.5"), std::string::npos) << problem;
+  EXPECT_NE(problem.find("t = 0.75"), std::string::npos) << problem;
+  const json poses = *Dispatch("poses", json::object(), &s, &sampler);
+  EXPECT_TRUE(poses["views"][0].contains("problem"));
+}
+
 // A changed light source needs no new motion, but the run a sampler draws
 // takes it (an incremental simulation keeps the run).
 TEST(EditorRpc, AnIncrementalSimulationKeepsTheRunsLightsAndViewsCurrent) {

@@ -8,8 +8,11 @@
 // whose centre the core computes from the motion, one from the side) and
 // its red point light; torque handles; the Create menu's torque, light,
 // view (of the camera as it is) and trajectory, and Delete; the handles of
-// a view's -center, -pos and -rot, and 'z'/'x' pushing a dragged handle in
-// depth.  Screenshots go to OUT_DIR.
+// a view's -center, -pos, -rot and -scale, and 'z'/'x' pushing a dragged
+// handle in depth; a view whose -pos and -scale are expressions of state
+// and time (seed 4.1.7): its camera where the expressions put it at each
+// frame, moving while playing, its handles read-only.  Screenshots go to
+// OUT_DIR.
 import { join } from 'node:path';
 import { browserTest, dragHandle, openEditor, sleep, waitFor } from './common.mjs';
 
@@ -101,7 +104,7 @@ await browserTest(asgard, scene, 'camera', async ({ check, url, context }) => {
   // Views: the menu lists the scene's; "chase" follows the ball (the core's
   // camera centre is the ball at each frame); "side" looks along x.
   const options = await page.evaluate(() => [...document.querySelectorAll('#camera-view option')].map((o) => o.value));
-  check(options.join(',') === ',chase,side', `the camera menu: ${options.map((o) => o || 'Free camera').join(', ')}`);
+  check(options.join(',') === ',chase,crane,side', `the camera menu: ${options.map((o) => o || 'Free camera').join(', ')}`);
   await page.selectOption('#camera-view', 'chase');
   const centred = [];
   for (const t of [0, 0.5, 1.0, 1.73]) {
@@ -115,6 +118,36 @@ await browserTest(asgard, scene, 'camera', async ({ check, url, context }) => {
   const wantFov = (2 * Math.atan(Math.tan(view.fov_y / 2) / Math.min(1, s7.aspect)) * 180) / Math.PI;
   check(Math.abs(s7.fov - wantFov) < 1e-9, `with the core's field of view (${s7.fov.toFixed(3)}°)`);
   await page.screenshot({ path: join(outDir, '2-chase.png') });
+  // "crane": -pos {{-runner.x} 1 {-t}} and -scale {2 + t}, expressions the
+  // core evaluates at every frame: it looks at (runner.x, −1, t) = (−3 + 3t,
+  // −1, t) from 4 framing radii / (2 + t) along +z, so the ball stays in the
+  // middle across and the camera closes in.
+  await page.selectOption('#camera-view', 'crane');
+  const framing = await page.evaluate(() => window.asgard.graphical.poses.framing);
+  const craneAt = [];
+  for (const t of [0, 0.5, 1.0, 1.5]) {
+    await page.evaluate((tt) => window.asgard.graphical.seek(tt), t);
+    const s = await cameraState(page), p = await page.evaluate(() => window.asgard.graphical.bodyScreenPos('runner'));
+    craneAt.push({ t, target: dist(s.target, [-3 + 3 * t, -1, t]), distance: dist(s.pos, s.target) / (framing.eye_distance * framing.radius / (2 + t)) - 1, x: p.x - cx, y: p.y - cy });
+  }
+  check(craneAt.every((c) => c.target < 1e-5 && Math.abs(c.distance) < 1e-5),
+    `the crane view looks at (−3 + 3t, −1, t) from 4 radii / (2 + t) (off by ${craneAt.map((c) => `${c.target.toExponential(1)}, ${c.distance.toExponential(1)}`).join('; ')} at t = 0, 0.5, 1, 1.5)`);
+  check(craneAt.every((c) => Math.abs(c.x) < 1) && craneAt.every((c, i) => i === 0 || c.y < craneAt[i - 1].y - 2),
+    `the ball stays in the middle across (${craneAt.map((c) => c.x.toFixed(2)).join(', ')} px) and rises on the screen as the view zooms (${craneAt.map((c) => c.y.toFixed(1)).join(', ')} px)`);
+  // Playing: the camera moves with the motion (no server round trip).
+  await page.evaluate(() => window.asgard.graphical.seek(0));
+  await page.click('#play');
+  const playing = [];
+  for (let i = 0; i < 3; ++i) {
+    await sleep(200);
+    playing.push(await page.evaluate(() => { const g = window.asgard.graphical; return { t: g.t, target: g.controls.target.toArray(), playing: g.playing }; }));
+  }
+  await page.screenshot({ path: join(outDir, '3-crane-playing.png') });
+  await page.click('#play');
+  const advanced = playing.every((p, i) => i === 0 || (p.t > playing[i - 1].t && p.target[0] > playing[i - 1].target[0] + 0.1));
+  const onTrack = playing.every((p) => dist(p.target, [-3 + 3 * p.t, -1, p.t]) < 1e-3);
+  check(playing.every((p) => p.playing) && advanced && onTrack,
+    `while playing, the crane camera moves along (−3 + 3t, −1, t): t = ${playing.map((p) => p.t.toFixed(3)).join(', ')}, target x = ${playing.map((p) => p.target[0].toFixed(3)).join(', ')}`);
   await page.selectOption('#camera-view', '');
   const free = [];
   for (const t of [0, 1]) {
@@ -132,7 +165,7 @@ await browserTest(asgard, scene, 'camera', async ({ check, url, context }) => {
     `the side view (-rot {0 π/2 0}) sees the ball's path end on: x = ${side.map((p) => (p.x - cx).toFixed(2)).join(', ')} px from the middle`);
   check(Math.abs(side[1].y - cy) < Math.abs(side[0].y - cy),
     `the ball moving along +x goes away from the eye (${Math.abs(side[0].y - cy).toFixed(1)} → ${Math.abs(side[1].y - cy).toFixed(1)} px from the middle)`);
-  await page.screenshot({ path: join(outDir, '3-side.png') });
+  await page.screenshot({ path: join(outDir, '4-side.png') });
   // Turning the view by hand leaves the scene's view for the free camera.
   await drag(page, [[cx, cy], [cx + 20, cy], [cx + 40, cy]]);
   check(await page.evaluate(() => document.getElementById('camera-view').value === '' && window.asgard.graphical.viewName === ''),
@@ -298,6 +331,44 @@ await browserTest(asgard, scene, 'camera', async ({ check, url, context }) => {
   check(!!posText, `the drag appends -pos {${posText && posText[1]}}`);
   check(await waitFor(async () => { [eye, target, up] = await sideCamera(); return dist(hp.world, target.map((v, k) => v + spokeLength * up[k])) < 2e-3; }, 'the core target under the knob'),
     'the core\'s camera looks at the point below the dragged -pos knob');
+
+  // -scale: side writes none; its knob, on a spoke along the view's right
+  // 0.3 radius × the scale long, dragged outward appends -scale, the label
+  // saying the value; the core's eye is then 4 radii / scale away.
+  const scaleKnob = () => page.evaluate(() => {
+    const g = window.asgard.graphical, h = g.handles.find((x) => x.id === 'side.scale');
+    const a = g.toScreen(h.anchor()), b = g.toScreen(h.mesh.position);
+    return { value: h.value, editable: h.editable, dx: b.x - a.x, dy: b.y - a.y };
+  });
+  const k0 = await scaleKnob();
+  check(k0.editable && Math.abs(k0.value[0] - 1) < 1e-3, `side's -scale knob starts at the core's scale (${k0.value})`);
+  const along = Math.hypot(k0.dx, k0.dy);
+  let label = '';
+  await dragHandle(page, 'side.scale', (40 * k0.dx) / along, (40 * k0.dy) / along,
+    { during: async () => { label = await page.evaluate(() => document.getElementById('label').textContent); } });
+  const k1 = await scaleKnob();
+  const scaleText = /-scale (\S+)/.exec((await sideLine()) || '');
+  check(!!scaleText && Number(scaleText[1]) === k1.value[0] && k1.value[0] > 1.05,
+    `dragging the knob outward appends -scale ${scaleText && scaleText[1]}`);
+  check(label === `side -scale ${k1.value[0]}`, `the label shows the value while dragging ("${label}")`);
+  check(await waitFor(async () => { [eye, target, up] = await sideCamera(); return Math.abs(dist(eye, target) * k1.value[0] / (framing.eye_distance * framing.radius) - 1) < 1e-5; }, 'the core eye distance'),
+    `the core's eye for side is then 4 radii / ${k1.value[0]} from what it looks at`);
   await page.screenshot({ path: join(outDir, '9-view-dragged.png') });
+
+  // crane's -pos and -scale are expressions: read-only handles (the reason
+  // on a click) that the core's camera places at the frame shown; its
+  // literal -rot keeps a live knob.
+  await page.evaluate(() => window.asgard.graphical.seek(1));
+  const [cp, cs, cr] = await Promise.all(['crane.pos', 'crane.scale', 'crane.rot'].map(vh));
+  check(!cp.editable && !cs.editable && /expression of time or state/.test(cp.reason) && /expression of time or state/.test(cs.reason) && cr.editable,
+    `crane's -pos and -scale are read-only ("${cp.reason}"), its -rot is not`);
+  check(dist(cp.world, [0, -1 + spokeLength, 1]) < 1e-5 && dist(cs.world, [3 * spokeLength, -1, 1]) < 1e-5,
+    'at t = 1 its -pos knob is above (0, −1, 1), where it looks, and its -scale knob 3 × 0.3 radius to the right');
+  await page.mouse.click(cp.x, cp.y);
+  const hover = await page.evaluate(() => document.getElementById('label').textContent);
+  check(hover === 'crane -pos is read-only: an expression of time or state (the view moves)', `clicking it says why: "${hover}"`);
+  const craneLine = (await lines()).find((l) => l.startsWith('view crane'));
+  check(craneLine === 'view crane -center {0 0 0} -rot {0 0 0} -pos {{-runner.x} 1 {-t}} -scale {2 + t}', `and its text is unchanged ("${craneLine}")`);
+  await page.screenshot({ path: join(outDir, '10-crane-handles.png') });
   check(errors.length === 0, `no page errors ${errors.join('; ')}`);
 });

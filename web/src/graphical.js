@@ -438,26 +438,40 @@ export class GraphicalViewer {
   // A `view` element (seed 4.1.7) as asgard render places its camera: the
   // rotation R (-rot, world to view), -pos (scene units after rotation) and
   // -center c put the point looked at at Rᵀ(−pos) + c and the eye along
-  // Rᵀ ẑ from it.  Three handles: -center (a ball at c; read-only when
-  // -follow or -trajectory moves it), -pos (a knob on a spoke from the
-  // point looked at along the view's up), -rot (a knob on a spoke from that
-  // point toward the eye; dragging it turns the view by the rotation taking
-  // the spoke to the pointer).  The spokes are 0.3 of the scene's radius.  An
-  // option not written takes the value the core's camera has (poses.views)
-  // and is appended when dragged.  `index`: the view's place among views.
+  // Rᵀ ẑ from it, kEyeDistance framing radii / -scale away.  Four handles:
+  // -center (a ball at c; read-only when -follow or -trajectory moves it),
+  // -pos (a knob on a spoke from the point looked at along the view's up),
+  // -rot (a knob on a spoke from that point toward the eye; dragging it
+  // turns the view by the rotation taking the spoke to the pointer), -scale
+  // (a knob on a spoke along the view's right, the spoke's length times the
+  // scale: dragging it out zooms in).  The spokes are 0.3 of the scene's
+  // radius.  An option not written takes the value the core's camera has
+  // (poses.views) and is appended when dragged.  An option written as an
+  // expression of time or state (the core lists them: `expressions`) has a
+  // read-only handle that the core's camera at the frame shown places.
+  // `index`: the view's place among views.
   addView(element, index, add) {
     const ix = this.index, core = (this.poses.views || [])[index];
     if (!core || !core.cameras.length) return;
-    const [eye, target, up] = core.cameras[0].map((v) => new THREE.Vector3(...v));
-    const z = eye.clone().sub(target).normalize(), y = up.clone().normalize(), x = y.clone().cross(z);
-    const coreRot = new THREE.Quaternion().setFromRotationMatrix(new THREE.Matrix4().makeBasis(x, y, z)).invert();
-    const fallbackRot = rotationLiteral(coreRot, 3);
-    const q = () => rotationOf(rot.value || fallbackRot);
+    const expressions = new Set(core.expressions || []);
+    const framing = this.poses.framing || { eye_distance: 4, radius: this.radius };
+    // The core's camera at the frame shown: [eye, target, up], its rotation
+    // (world to view) and its scale.
+    const cameraAt = () => (core.cameras[this.frame] || core.cameras[0]).map((v) => new THREE.Vector3(...v));
+    const rotationAt = ([eye, target, up]) => {
+      const z = eye.clone().sub(target).normalize(), y = up.clone().normalize(), x = y.clone().cross(z);
+      return new THREE.Quaternion().setFromRotationMatrix(new THREE.Matrix4().makeBasis(x, y, z)).invert();
+    };
+    const scaleAt = ([eye, target]) => (framing.eye_distance * framing.radius) / Math.max(1e-12, eye.distanceTo(target));
+    const [, target] = cameraAt();
+    const fallbackRot = rotationLiteral(rotationAt(cameraAt()), 3);
+    const q = () => (expressions.has('rot') ? rotationAt(cameraAt()) : rotationOf(rot.value || fallbackRot));
     const p = () => new THREE.Vector3(...(pos.value || ZERO));
     const c = () => new THREE.Vector3(...centre.value);
-    const looked = () => p().negate().applyQuaternion(q().invert()).add(c());
+    // With an expression the point looked at is where the core's camera looks.
+    const looked = () => (expressions.size ? cameraAt()[1] : p().negate().applyQuaternion(q().invert()).add(c()));
     const spoke = () => this.radius * 0.3;
-    const rot = add({ kind: 'view', element, param: 'rot', ...ix.vector(element, 'rot', { counts: [3, 4], fallback: fallbackRot }),
+    const rot = add({ kind: 'view', element, param: 'rot', ...this.viewOption(element, 'rot', expressions, { counts: [3, 4], fallback: fallbackRot }),
       anchor: looked,
       where: () => looked().add(new THREE.Vector3(0, 0, spoke()).applyQuaternion(q().invert())),
       valueFrom: (w, d) => {
@@ -470,16 +484,22 @@ export class GraphicalViewer {
     // that it is not under the centre's ball when -pos is zero); dragging
     // it moves the point looked at as much.
     const upward = () => new THREE.Vector3(0, spoke(), 0).applyQuaternion(q().invert());
-    const pos = add({ kind: 'view', element, param: 'pos', ...ix.vector(element, 'pos'),
+    const pos = add({ kind: 'view', element, param: 'pos', ...this.viewOption(element, 'pos', expressions),
       anchor: looked,
       where: () => looked().add(upward()),
       valueFrom: (w) => {
         const v = w.clone().sub(upward()).sub(c()).applyQuaternion(q()).negate();
         return [v.x, v.y, v.z].map((k) => round(k));
       } });
+    const rightward = (k) => new THREE.Vector3(spoke() * k, 0, 0).applyQuaternion(q().invert());
+    const scale = add({ kind: 'view', element, param: 'scale', ...this.viewOption(element, 'scale', expressions, { counts: [1], fallback: [round(scaleAt(cameraAt()))] }),
+      anchor: looked,
+      where: () => looked().add(rightward(scale.value ? scale.value[0] : scaleAt(cameraAt()))),
+      valueFrom: (w, d) => [round(Math.max(0.01, w.clone().sub(d.anchor).dot(rightward(1)) / (spoke() * spoke())))] });
     // Without -center (or with one that moves) the centre at the start is
-    // where the core's camera puts it: the target plus Rᵀ pos.
-    const c0 = target.clone().add(p().applyQuaternion(q().invert()));
+    // where the core's camera puts it: the target plus Rᵀ pos; with -pos an
+    // expression, the framing centre (a view's default).
+    const c0 = expressions.has('pos') ? new THREE.Vector3(...(framing.center || [0, 0, 0])) : target.clone().add(p().applyQuaternion(q().invert()));
     const moving = ix.text(element, 'follow') ? `-follow ${ix.text(element, 'follow')} moves it`
       : ix.text(element, 'trajectory') ? `-trajectory ${ix.text(element, 'trajectory')} moves it` : '';
     const centreSpec = ix.vector(element, 'center', { fallback: [c0.x, c0.y, c0.z] });
@@ -487,6 +507,16 @@ export class GraphicalViewer {
     const centre = add({ kind: 'view', element, param: 'center', ...centreSpec,
       where: c,
       valueFrom: (w, d) => d.value.map((v, k) => round(v + w.getComponent(k) - d.point.getComponent(k))) });
+  }
+
+  // {value, editable, reason} of a view's -pos, -rot or -scale: an
+  // expression of time or state is read-only (the session's reason), with
+  // no value of its own (the core's camera places its handle).
+  viewOption(element, param, expressions, options) {
+    const spec = this.index.vector(element, param, options);
+    if (!expressions.has(param)) return spec;
+    const p = this.index.get(element, param);
+    return { value: null, editable: false, reason: (p && p.reason) || 'an expression of time or state' };
   }
 
   // The curve of a trajectory as drawn: through its handles, else the core's samples.

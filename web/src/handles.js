@@ -16,12 +16,14 @@
 //   view       view     center    ball at the centre of rotation   moves in the screen plane
 //              view     pos       knob above the point looked at   moves in the screen plane
 //              view     rot       knob on a spoke toward the eye   turns the view
+//              view     scale     knob on a spoke along the right  its length / 0.3 radius is the scale
 //
 // While a handle is dragged, 'z' pushes it away from the viewer and 'x'
 // pulls it nearer (seed 4.1.3).
 //
 // A handle whose value is not a literal the session can rewrite (an
-// expression, a command made in a loop …) is read-only: drawn grey and
+// expression — a view's -pos, -rot or -scale of time or state is placed by
+// the core's camera at the frame shown —, a command made in a loop …) is read-only: drawn grey and
 // hollow, its reason shown on hover.  Values edit through the session's
 // set_parameter exactly like the text would (one literal rewritten).
 import * as THREE from 'three';
@@ -149,7 +151,11 @@ export class Handle {
     const words = this.words && this.words.length > 1 ? this.words.map((w) => `-${w}`).join(' ') : `-${this.param}`;
     return `${this.element} ${words}`;
   }
-  valueText() { return this.value ? `{${this.value.map((v) => round(v, 10000)).join(' ')}}` : '(not a literal)'; }
+  valueText() {
+    if (!this.value) return '(not a literal)';
+    const text = this.value.map((v) => round(v, 10000)).join(' ');
+    return this.value.length === 1 ? text : `{${text}}`;
+  }
   place() {
     const p = this.where();
     this.mesh.visible = !!p;
