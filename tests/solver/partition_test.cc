@@ -50,12 +50,20 @@ TEST(PartitionEquations, ALongChainDoesNotOverflowTheStack) {
 // compiles a tape of its own.
 TEST(TapeCache, SharesATapeBetweenEquationsEqualUpToAShiftOfTheirVariables) {
   expr::Pool pool;
-  // f(base) = {sin(x_b) · x_{b+1} + 2.5, x_{b+1}² − t}
+  // f(base) = {sin(x_b) · x_{b+1} + 2.5, x_{b+1}² − t}.  The nodes are made
+  // one statement at a time: the pool orders a sum's terms by node id, so a
+  // match needs the same relative creation order, which nested calls would
+  // leave to the compiler's (unspecified) order of evaluating arguments.
   auto rates = [&](int b, double k) {
     const expr::NodeId s = pool.Apply(expr::Op::kSin, std::vector<expr::NodeId>{pool.Var(b)});
-    return std::vector<expr::NodeId>{
-        pool.Add(pool.Mul(s, pool.Var(b + 1)), pool.Const(k)),
-        pool.Sub(pool.Pow(pool.Var(b + 1), pool.Const(2.0)), pool.Time())};
+    const expr::NodeId c = pool.Const(k);
+    const expr::NodeId next = pool.Var(b + 1);
+    const expr::NodeId product = pool.Mul(s, next);
+    const expr::NodeId sum = pool.Add(product, c);
+    const expr::NodeId t = pool.Time();
+    const expr::NodeId two = pool.Const(2.0);
+    const expr::NodeId square = pool.Pow(next, two);
+    return std::vector<expr::NodeId>{sum, pool.Sub(square, t)};
   };
   TapeCache cache;
   const auto a = cache.Get(pool, rates(2, 2.5));
