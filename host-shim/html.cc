@@ -284,6 +284,21 @@ std::string PlayerJson(const std::string& reply, std::string* error) {
       out[key] = document::Base64Encode(numbers);
     }
     if (in.contains("arrow_length")) out["arrow_length"] = in.at("arrow_length");
+    // A moving view's camera per frame ([eye, target, up]), packed likewise.
+    if (in.contains("cameras")) {
+      const json& cameras = in.at("cameras");
+      if (cameras.size() != n) return fail("has not one camera per time");
+      std::string numbers;
+      numbers.reserve(n * 36);
+      for (const json& camera : cameras) {
+        if (camera.size() != 3) return fail("has a camera without its eye, target and up");
+        for (const json& v : camera) {
+          if (v.size() != 3) return fail("has a camera vector without 3 numbers");
+          for (const json& x : v) PutF32(numbers, x.get<double>());
+        }
+      }
+      out["cameras"] = document::Base64Encode(numbers);
+    }
     // Inside <script type="application/json">: no "</" may occur.
     std::string text = out.dump();
     for (size_t at = text.find("</"); at != std::string::npos; at = text.find("</", at + 3))

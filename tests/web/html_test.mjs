@@ -4,7 +4,9 @@
 // have them (the same camera), a body's pixels move between two times, a
 // drag turns the view, play advances the time, and a browser without WebGL
 // plays the frames; on samples/two-animations.ens the links and the force are
-// drawn.  Prints the sizes of the three --html modes.
+// drawn; a view whose -pos is an expression of time moves the WebGL camera
+// as it moves the pre-rendered frames'.  Prints the sizes of the three
+// --html modes.
 // Usage: node html_test.mjs DOCHOST OUT/memo.ens OUT
 import { spawnSync } from 'node:child_process';
 import { statSync, writeFileSync } from 'node:fs';
@@ -198,6 +200,45 @@ try {
     if (kind === 'arrows') check(seen[0]?.down > 0, 'the dumbbell\'s force (down) points down the screen');
   }
   check(errors.length === 0, `no script errors on the page with links and forces ${errors.join('; ')}`);
+
+  // A moving view (its -pos an expression of time): a ball at rest moves
+  // across the picture, in WebGL where the pre-rendered frames (drawn by the
+  // slave at each frame's time) have it.
+  const panDoc = join(outDir, 'pan.ens'), pan = join(outDir, 'pan.html');
+  writeFileSync(panDoc, ['DOCUMENT ARTICLE', '<ARTICLE>', '<TITLE>{A moving view}</TITLE>', '<BODY>',
+    '<PARAGRAPH><DOCUMENT>', 'DOCUMENT ANIMATION', '<ANIMATION>', '<ASGARD>{',
+    'simulator -finish 2 -frames 24 -collisions 0',
+    'shape_set ball -desc \\{-sub \\{-sphere 0.5\\}\\}',
+    'body b -shape ball -init_pos \\{0 0 0\\} -color #ff8c00',
+    'body c -shape ball -init_pos \\{0 2 0\\} -color #4682b4',
+    'view pan -pos \\{\\{-t\\} 0 0\\}',
+    '}</ASGARD>', '</ANIMATION>', '</DOCUMENT></PARAGRAPH>', '</BODY>', '</ARTICLE>', ''].join('\n'));
+  const rp = spawnSync(dochost, ['convert', panDoc, '-o', pan, '--quiet'], { encoding: 'utf8' });
+  check(rp.status === 0, `dochost convert of a moving view exits 0 ${rp.stderr || ''}`);
+  const page3 = await context.newPage();
+  page3.on('pageerror', (e) => errors.push(String(e)));
+  await page3.goto(pathToFileURL(pan).href);
+  await waitFor(() => page3.evaluate(() => document.querySelector('#anim-1')?.dataset.state === 'paused'), 'the moving view is set up');
+  const panInfo = await page3.evaluate(() => {
+    const data = JSON.parse(document.getElementById('asgard-frames').textContent)['anim-1'];
+    return { cameras: typeof data.player.cameras === 'string', times: data.times,
+      colour: data.player.bodies.find((b) => b.name === 'b').pieces[0].color };
+  });
+  check(panInfo.cameras, 'the player data carries a camera per frame');
+  const seenAt = [];
+  for (const t of [0.5, 1.5]) {
+    const k = panInfo.times.findIndex((x) => Math.abs(x - t) < 1e-6);
+    await page3.evaluate((t) => document.querySelector('#anim-1').asgard.showTime(t), t);
+    const gl = await colourBlob(page3, { rgb: panInfo.colour });
+    const frame = await colourBlob(page3, { frame: k, rgb: panInfo.colour });
+    writeFileSync(join(outDir, `pan-t${t}.png`), await page3.locator('figure#anim-1').screenshot());
+    seenAt.push(gl);
+    check(k >= 0 && gl.n > 100 && frame.n > 100 && Math.hypot(frame.x - gl.x, frame.y - gl.y) < 3,
+      `t = ${t}: the ball at rest is at (${gl.x?.toFixed(1)}, ${gl.y?.toFixed(1)}) in WebGL and at (${frame.x?.toFixed(1)}, ${frame.y?.toFixed(1)}) in the frame`);
+  }
+  check(seenAt.length === 2 && seenAt[0].x - seenAt[1].x > 20,
+    `the view pans: the ball at rest moves left by ${(seenAt[0].x - seenAt[1].x).toFixed(1)} px from t = 0.5 to 1.5`);
+  check(errors.length === 0, `no script errors on the moving view's page ${errors.join('; ')}`);
 } catch (e) {
   check(false, `unexpected: ${e.stack || e}`);
 } finally {

@@ -16,7 +16,10 @@
 // track: k}], poses: base64 float32, n frames × tracks × 7, links: base64
 // float32, n frames × links × [ax ay az bx by bz] (the attachment points),
 // arrows: base64 float32, n frames × forces × [bx by bz fx fy fz] (point of
-// application and force), arrow_length: the longest force's drawn length}.
+// application and force), arrow_length: the longest force's drawn length,
+// cameras: base64 float32, n frames × [eye, target, up] when the view moves
+// (its -pos, -rot or -scale an expression, -follow, -trajectory)}.  A moving
+// view's camera is interpolated between frames until the reader turns it.
 //
 // Links are drawn as lines between their two ends and forces as arrows from
 // their points of application (the colours of asgard render's overlays), over
@@ -182,6 +185,7 @@ export function createPlayer(figure, fallback, data) {
   // body coordinates, the poses per frame and the lights.
   let bodies = [], poses = new Float32Array(0), tracks = 0, times = null;
   let links = new Float32Array(0), arrows = new Float32Array(0), longest = 0, arrowLength = 0;
+  let cameras = null;  // a moving view's camera per frame
   const lightPos = new Float32Array(16), lightColor = new Float32Array(12);
   let count = 0, ambient = [0.5, 0.5, 0.5];
   function load(d) {
@@ -203,6 +207,8 @@ export function createPlayer(figure, fallback, data) {
     times = d.times && d.times.length === d.n ? d.times : null;  // uneven frame times
     links = floats(d.links);
     arrows = floats(d.arrows);
+    cameras = floats(d.cameras);
+    if (cameras.length !== 9 * d.n) cameras = null;
     if (links.length % (6 * d.n)) links = new Float32Array(0);
     if (arrows.length % (6 * d.n)) arrows = new Float32Array(0);
     longest = 0;
@@ -352,8 +358,17 @@ export function createPlayer(figure, fallback, data) {
   }
 
   let shown = data.t0;
+  // A moving view's camera at time t: eye and target linearly between the
+  // frames around t, up normalized.
+  function cameraAt(t) {
+    const { i, j, s } = frameAt(t);
+    const v = (k) => [0, 1, 2].map((c) => cameras[9 * i + k + c] * (1 - s) + cameras[9 * j + k + c] * s);
+    return { eye: v(0), target: v(3), up: unit(v(6)) };
+  }
+
   function draw(t = shown) {
     shown = t;
+    if (cameras && !turned) cam = cameraAt(t);
     gl.viewport(0, 0, canvas.width, canvas.height);
     gl.clearColor(0.949, 0.949, 0.961, 1);
     gl.clear(gl.COLOR_BUFFER_BIT | gl.DEPTH_BUFFER_BIT);
