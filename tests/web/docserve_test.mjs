@@ -250,6 +250,33 @@ try {
       await page.uncheck(`${fig(0)} >> .handles`);
       check(await waitFor(() => page.evaluate(() => document.querySelector('canvas.asgard-handles').style.display === 'none'), 'hidden'),
         'unchecking Handles hides them');
+
+      // A view whose -pos is an expression of t (it pans 1 unit a second):
+      // the renditions follow its camera per frame (the stream's views), as
+      // the slave's pictures do.
+      const stillView = await blobOf(0, frameUrl(3));
+      const panned = `${reread.result.state.text.trimEnd()}\nview pan -pos {{-t} 0 0}\n`;
+      const updated = await other.call('update', { text: panned });
+      check(updated.result && updated.result.simulated && updated.result.simulated.ok,
+        `a view whose -pos is an expression of t is added (${JSON.stringify(updated.error || (updated.result && updated.result.simulated))})`);
+      const cameraAt = (t) => page.evaluate((time) => {
+        const r = window.asgardDocument.animations.get(0).renditions[0];
+        r.player.draw(time);
+        return r.player.camera();
+      }, t);
+      check(await waitFor(async () => {
+        const c0 = await cameraAt(0), c3 = await cameraAt(3);
+        return Math.abs(Math.hypot(...c3.target.map((v, k) => v - c0.target[k])) - 3) < 1e-3;
+      }, 'the moving view'), 'the rendition\'s camera pans with the view: its target moves 3 units from t = 0 to t = 3');
+      for (const [t, slider] of [[1.5, '500'], [3, '1000']]) {
+        await page.locator(`${fig(0)} >> .time`).fill(slider);
+        await waitFor(async () => Number(await page.evaluate(() => document.querySelector('figure.rendition').dataset.t)) === t, 'the slider');
+        const webgl = await blobOf(0, 'canvas'), slave = await blobOf(0, frameUrl(t));
+        check(agree(webgl, slave), `at t = ${t} the WebGL rendition draws the bodies where the slave's picture of the moving view has them (${JSON.stringify(webgl)} vs ${JSON.stringify(slave)})`);
+        // Not where the still view had them: the view moved them on the screen.
+        if (t === 3) check(!agree(webgl, stillView), `the panned picture differs from the still view's (${JSON.stringify(stillView)})`);
+      }
+      await page.screenshot({ path: join(outDir, '6-moving-view.png'), clip: { x: 0, y: 150, width: 640, height: 330 } });
       check(errors.length === 0, `no page errors (${errors.join('; ')})`);
 
       // Without WebGL the renditions are the slave's pictures.
@@ -265,7 +292,7 @@ try {
         const f = document.querySelector('figure.rendition');
         return f.dataset.renderer === 'picture' && Number(f.dataset.drawn) >= 1 && !f.querySelector('canvas');
       }), 'the picture fallback'), 'without WebGL the document view shows the slave\'s picture');
-      await plain.screenshot({ path: join(outDir, '6-no-webgl.png') });
+      await plain.screenshot({ path: join(outDir, '7-no-webgl.png') });
       // There, Handles is the slave's picture with the position handles drawn.
       const plainFrame = (await frame(3)).bytes, handlesFrame = (await frame(3, 1)).bytes;
       writeFileSync(join(outDir, 'frame-3.png'), plainFrame);
@@ -278,7 +305,7 @@ try {
         const b = await (await fetch('/frame?a=0&t=3&handles=1')).arrayBuffer();
         return a.byteLength === b.byteLength && new Uint8Array(a).every((x, i) => x === new Uint8Array(b)[i]);
       }), 'handles drawn'), 'without WebGL, Handles shows the slave\'s picture with the position handles');
-      await plain.screenshot({ path: join(outDir, '7-no-webgl-handles.png') });
+      await plain.screenshot({ path: join(outDir, '8-no-webgl-handles.png') });
       other.ws.close();
     } finally {
       await close();

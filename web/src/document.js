@@ -17,15 +17,22 @@ import { createPlayer } from './player.js';
 
 // The editor server's meshes and poses as the player takes them (plain
 // arrays for its base64 fields; a body without a track keeps its pose; the
-// links and force arrows as the stream has them).
+// links and force arrows as the stream has them).  The camera is the
+// scene's view as the slave's renditions draw it (its last `view`); when
+// that view moves (-follow, -trajectory, or -pos, -rot, -scale expressions
+// of time or state) its camera per frame, [eye target up] from the
+// stream's `views`, which the player follows until the reader turns it.
 export function playerData(meshes, poses) {
   const n = poses.times.length, k = poses.bodies.length;
   const flat = new Float32Array(n * k * 7);
   poses.poses.forEach((frame, i) => flat.set(frame, i * k * 7));
-  // Links and force arrows: the same count of numbers in every frame.
-  const frames = (list) => (list && list.length === n ? Float32Array.from(list.flat()) : new Float32Array(0));
+  // Links, force arrows and cameras: the same count of numbers in every frame.
+  const frames = (list) => (list && list.length === n ? Float32Array.from(list.flat(2)) : new Float32Array(0));
+  const views = poses.views || [];
+  const view = views[views.length - 1];
   return {
     t0: poses.t0, t1: poses.t1, n, times: poses.times, camera: poses.camera, lights: meshes.lights,
+    cameras: view && view.moves ? frames(view.cameras) : new Float32Array(0),
     poses: flat, links: frames(poses.links), arrows: frames(poses.arrows), arrow_length: poses.arrow_length,
     bodies: meshes.bodies.map((b) => {
       const track = poses.bodies.indexOf(b.name);

@@ -44,9 +44,9 @@ class OverlayViewer extends GraphicalViewer {
     this.controls.target.set(...c.target);
   }
 
-  draw() {
+  render() {
     this.followPlayer();
-    super.draw();
+    super.render();
   }
 
   // Picking and dragging use the camera too (between draws).
@@ -105,13 +105,13 @@ export class HandleOverlay {
       if (!last) return;
       this.player.orbit(ev.clientX - last[0], ev.clientY - last[1]);
       last = [ev.clientX, ev.clientY];
-      v.draw();
+      v.render();
     });
     const up = () => { last = null; };
     c.addEventListener('pointerup', up);
     c.addEventListener('pointercancel', up);
-    c.addEventListener('wheel', (ev) => { ev.preventDefault(); this.player.zoom(Math.pow(1.0015, ev.deltaY)); v.draw(); }, { passive: false });
-    c.addEventListener('dblclick', () => { this.player.home(); v.draw(); });
+    c.addEventListener('wheel', (ev) => { ev.preventDefault(); this.player.zoom(Math.pow(1.0015, ev.deltaY)); v.render(); }, { passive: false });
+    c.addEventListener('dblclick', () => { this.player.home(); v.render(); });
   }
 
   startDrag() {
@@ -145,5 +145,6 @@ export class HandleOverlay {
   setScene(meshes, poses) { this.viewer.setScene(meshes, poses); }
   setParameters(state) { this.viewer.setParameters(state.parameters, state.elements); }
   parameterEdited(element, param, values) { this.viewer.parameterEdited(element, param, values); }
-  seek(t) { this.viewer.seek(t); }
+  // A tick of the document's clock: drawn at once, with the player's frame.
+  seek(t) { this.viewer.seek(t, true); }
 }
