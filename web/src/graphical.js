@@ -11,7 +11,7 @@
 // scene's `view` elements; the scene's light sources light the picture.
 import * as THREE from 'three';
 import { SphereControls } from './camera.js';
-import { GROUPS, Handle, ParameterIndex, numbers, round, rotationLiteral, rotationOf } from './handles.js';
+import { GROUPS, Handle, HandleBatch, ParameterIndex, numbers, round, rotationLiteral, rotationOf } from './handles.js';
 import { TrajectoryCurve, knotsText, parseKnots } from './trajectory.js';
 import { softwareWebGL } from './webgl.js';
 
@@ -76,6 +76,8 @@ export class GraphicalViewer {
     this.selectionBox = new THREE.BoxHelper(undefined, 0xff8000);
     this.selectionBox.visible = false;
     this.scene.add(this.handleGroup, this.linkLines, this.paths, this.selectionBox);
+    this.handleBatch = new HandleBatch(this.scene);  // draws the handles
+    this.scene.matrixWorldAutoUpdate = false;  // render() updates the matrices first
     this.selected = null;  // the selected body's name
     this.selectedElement = null;  // the element last picked (a body, or a handle's element)
     this.mode = null;      // a creation waiting for clicks (startPick)
@@ -92,6 +94,7 @@ export class GraphicalViewer {
     this.playing = false;
     this.fitted = false;
     this.raycaster = new THREE.Raycaster();
+    this.raycaster.layers.enableAll();  // the handles' layer too
     this.setupEvents();
     // After setupEvents: a press on a handle disables the controls first.
     this.controls = new SphereControls(this.camera, canvas, { pickPoint: (ev) => { const b = this.pickBody(ev); return b && b.world; } });
@@ -414,6 +417,7 @@ export class GraphicalViewer {
     });
     ix.ofKind('trajectory').forEach((element) => this.addTrajectory(element, add));
     ix.ofKind('view').forEach((element, i) => this.addView(element, i, add));
+    this.handleBatch.build(this.handles, this.handleSize);
     this.applyVisibility();
     this.placeHandles();
     if (this.ui.knots) this.ui.knots();
@@ -776,6 +780,8 @@ export class GraphicalViewer {
       cancelAnimationFrame(this.drawRequest);
       this.drawRequest = 0;
     }
+    this.scene.updateMatrixWorld();
+    this.handleBatch.update();
     this.renderer.render(this.scene, this.camera);
   }
 
@@ -913,11 +919,14 @@ export class GraphicalViewer {
 
   // --- selection and clicks for creating elements (seed 4.1) ---------------
 
+  // Whether a click may pick body b: one that moves and is drawn.
+  pickable(b) { return b.index >= 0 && b.group.visible; }
+
   // The body under the pointer: {name, world, local (shape coordinates)}.
   pickBody(ev) {
     this.raycaster.setFromCamera(this.pointer(ev), this.camera);
     const meshes = [];
-    for (const b of this.bodies.values()) if (b.index >= 0 && b.group.visible) meshes.push(...b.meshes);
+    for (const b of this.bodies.values()) if (this.pickable(b)) meshes.push(...b.meshes);
     const hit = this.raycaster.intersectObjects(meshes, false)[0];
     if (!hit) return null;
     const name = hit.object.parent.name, b = this.bodies.get(name);
