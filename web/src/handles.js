@@ -207,10 +207,12 @@ export class HandleBatch {
     }
     this.group.clear();
     this.sets = [];
+    // (Balls of 10 × 7 segments: a handle is a few pixels across, and a
+    // hundred bodies' handles were 110 000 triangles at 14 × 10.)
     const geometry = {
       octahedron: () => new THREE.OctahedronGeometry(size * 1.25),
-      knob: () => new THREE.SphereGeometry(size * 0.9, 14, 10),
-      ball: () => new THREE.SphereGeometry(size * 0.8, 14, 10),
+      knob: () => new THREE.SphereGeometry(size * 0.9, 10, 7),
+      ball: () => new THREE.SphereGeometry(size * 0.8, 10, 7),
     };
     const groups = new Map();
     for (const h of handles) {
