@@ -174,7 +174,12 @@ export class GraphicalViewer {
   // meshes: {bodies: [{name, static, centroid, radius, pieces}]};
   // poses: {times, bodies, poses, forces}.
   setScene(meshes, poses) {
-    for (const b of this.bodies.values()) this.scene.remove(b.group);
+    // The old bodies' buffers go (not their materials: a material disposed
+    // of takes the shader program the new ones share).
+    for (const b of this.bodies.values()) {
+      this.scene.remove(b.group);
+      for (const m of [...b.meshes, ...b.edges]) m.geometry.dispose();
+    }
     this.bodies.clear();
     meshes.bodies.forEach((b) => {
       const group = new THREE.Group();

@@ -197,13 +197,23 @@ export class HandleBatch {
     parent.add(this.group);
     this.sets = [];
     this.arrows = [];
+    // Kept across builds: a material disposed of takes its compiled shader
+    // program with it (tens of milliseconds to make again in software).
+    const knob = (editable) => new THREE.MeshBasicMaterial({
+      depthTest: false, transparent: true, opacity: editable ? 0.8 : 0.9, wireframe: !editable,
+    });
+    this.materials = {
+      true: knob(true), false: knob(false),
+      shaft: new THREE.LineBasicMaterial({ vertexColors: true, depthTest: false, toneMapped: false }),
+      head: new THREE.MeshBasicMaterial({ depthTest: false, toneMapped: false }),
+    };
   }
 
   // A new set of handles (all of one size).
   build(handles, size) {
     for (const o of this.group.children) {
       o.geometry.dispose();
-      o.material.dispose();
+      if (o.dispose) o.dispose();  // an instanced mesh's instance buffers
     }
     this.group.clear();
     this.sets = [];
@@ -223,9 +233,7 @@ export class HandleBatch {
     const color = new THREE.Color();
     for (const list of groups.values()) {
       const { shape, editable } = list[0];
-      const mesh = new THREE.InstancedMesh(geometry[shape](), new THREE.MeshBasicMaterial({
-        depthTest: false, transparent: true, opacity: editable ? 0.8 : 0.9, wireframe: !editable,
-      }), list.length);
+      const mesh = new THREE.InstancedMesh(geometry[shape](), this.materials[editable], list.length);
       list.forEach((h, i) => mesh.setColorAt(i, color.set(h.color)));
       mesh.renderOrder = 10;
       mesh.frustumCulled = false;
@@ -243,9 +251,9 @@ export class HandleBatch {
       for (const k of [0, 3]) colors.set([color.r, color.g, color.b], 6 * i + k);
     });
     lines.setAttribute('color', new THREE.BufferAttribute(colors, 3));
-    this.shafts = new THREE.LineSegments(lines, new THREE.LineBasicMaterial({ vertexColors: true, depthTest: false, toneMapped: false }));
+    this.shafts = new THREE.LineSegments(lines, this.materials.shaft);
     const cone = new THREE.CylinderGeometry(0, 0.5, 1, 5, 1).translate(0, -0.5, 0);
-    this.heads = new THREE.InstancedMesh(cone, new THREE.MeshBasicMaterial({ depthTest: false, toneMapped: false }), n);
+    this.heads = new THREE.InstancedMesh(cone, this.materials.head, n);
     this.arrows.forEach((h, i) => this.heads.setColorAt(i, color.set(h.color)));
     for (const o of [this.shafts, this.heads]) {
       o.renderOrder = 9;
