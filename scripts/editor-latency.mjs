@@ -13,8 +13,9 @@
 // 2. drag end → motion: 10 drags; the time from releasing the handle to the
 //    re-simulated motion being shown (the `scene` event applied and the
 //    next animation frame, which draws it, done); with where it goes: the
-//    server's answer to the last edit, the `scene` message's arrival, its
-//    parse, setScene, the frame.
+//    `simulate` request leaving, the `scene` message's arrival, its parse,
+//    setScene, the frame.  Step 1 likewise: the edit leaving, the `text`
+//    event's arrival, applied.
 // 3. playback of 100 bodies: a 10 × 10 grid of boxes thrown up, spinning,
 //    under gravity; 3 s of Play; the frame rate (requestAnimationFrame) and
 //    the main thread's time per frame in the viewer (seek: interpolation,
