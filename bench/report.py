@@ -664,3 +664,61 @@ def main():
 
 if __name__ == "__main__":
     main()
+
+
+# --- The editor's latency (issue 13) ----------------------------------------
+# Appended to the generated document after main(): the numbers of
+# `node scripts/editor-latency.mjs` (headless Chromium against asgard studio)
+# in OUT_DIR/latency.csv, with the issue's targets.
+
+LATENCY_ROWS = [
+    ("drag_to_text", "handle drag → number in the text", "ms", "< 16 ms at the 95th percentile"),
+    ("drag_end_to_motion", "drag end → re-simulated motion shown (pendulum)", "ms",
+     "< 100 ms (95th percentile here)"),
+    ("playback_100_fps", "playback, 100 bodies", "frames/s", "≥ 60 frames/s"),
+    ("playback_100_main_thread", "main thread per frame of that playback", "ms", ""),
+]
+
+
+def latency_section(out):
+    rows = {r["measure"]: r for r in read(os.path.join(out, "latency.csv"))}
+    if not rows:
+        return []
+    first = next(iter(rows.values()))
+    md = ["## Editor latency (issue 13)", "",
+          "`node scripts/editor-latency.mjs [BUILD] [CSV]` in headless Chromium against "
+          "`asgard studio`: per step of a drag of the pendulum's b3 position handle, the "
+          "pointer event to the language viewer showing the new `-init_pos`; the release to "
+          "the re-simulated motion drawn; 3 s of Play of 100 spinning boxes. "
+          f"Renderer: {first.get('renderer', '?')}; machine: {first.get('machine', '?')}; "
+          f"run {first.get('date', '?')}. With software WebGL the browser's rasterization "
+          "shares the 2 cores with the server and the simulator.", "",
+          "| measure | median | 95th percentile | n | target | met |",
+          "|---|---|---|---|---|---|"]
+    for key, label, unit, target in LATENCY_ROWS:
+        r = rows.get(key)
+        if not r:
+            continue
+        med, p95, n = num(r["median"]), num(r["p95"]), r["n"]
+        goal = num(r.get("target"))
+        met = ""
+        if goal is not None and med is not None:
+            if unit == "frames/s":
+                met = "yes" if med >= goal else "no"
+            else:
+                met = "yes" if p95 is not None and p95 < goal else "no"  # the 95th percentile
+        spread = "" if unit == "frames/s" else f"{fmt(p95)} {unit}"
+        md.append(f"| {label} | {fmt(med)} {unit} | {spread} | {n} | {target} | {met} |")
+    md.append("")
+    return md
+
+
+def append_latency(out, doc):
+    md = latency_section(out)
+    if md:
+        with open(doc, "a") as f:
+            f.write("\n" + "\n".join(md) + "\n")
+
+
+if __name__ == "__main__":
+    append_latency(sys.argv[1], sys.argv[2])

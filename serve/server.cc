@@ -469,14 +469,17 @@ json Hub::Handle(const std::string& method, const json& params,
   }
   if (method == "simulate") {
     json sim = Resimulate();
-    if (state_stale_) {  // after a drag: fresh parameters for every view
+    // The new motion first (a drag's end waits for it; the views already
+    // have the dragged values from its `text` events), then, after graphical
+    // edits, fresh parameters for every view.
+    if (sim.value("ok", false))
+      Broadcast({{"event", "scene"}, {"meshes", meshes_}, {"poses", poses_}});
+    if (state_stale_) {
       state_stale_ = false;
       Broadcast({{"event", "state"},
                  {"state", Call("scene_state", json::object())},
                  {"changes", json::array()}});
     }
-    if (sim.value("ok", false))
-      Broadcast({{"event", "scene"}, {"meshes", meshes_}, {"poses", poses_}});
     return sim;
   }
   if (method == "undo" || method == "redo") {
@@ -626,6 +629,10 @@ class Server {
         beast::error_code pe;
         const auto peer = s.remote_endpoint(pe);
         if (!pe && IsLoopbackPeer(peer.address().to_string())) {
+          // Small messages leave at once: without this, an event and the
+          // answer written after it wait for the peer's delayed ACK (Nagle),
+          // about 40 ms a drag step.
+          s.set_option(tcp::no_delay(true), pe);
           std::make_shared<HttpSession>(std::move(s), *this)->Run();
         } else {
           std::cerr << "serve: refused a connection from "
@@ -717,7 +724,7 @@ void HttpSession::OnRequest() {
   if (req.method() != http::verb::get && req.method() != http::verb::head)
     return Respond(http::status::method_not_allowed, "text/plain", "only GET\n");
   bool ok = false;
-  if (path == "/editor.js" || path == "/document.js") {
+  if (path == "/editor.js" || path == "/document.js" || path == "/handles.js") {
     std::string js = ReadFile(o.web_root + path, &ok);
     if (!ok)
       return Respond(http::status::not_found, "text/plain",

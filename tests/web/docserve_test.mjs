@@ -88,7 +88,11 @@ try {
       const errors = [];
       page.on('pageerror', (e) => errors.push(String(e)));
       let frameRequests = 0;
+      const scripts = [];
       page.on('request', (r) => { if (r.url().includes('/frame?')) ++frameRequests; });
+      page.on('response', async (r) => {
+        if (/\.js$/.test(new URL(r.url()).pathname)) scripts.push({ path: new URL(r.url()).pathname, bytes: (await r.body()).length });
+      });
       await page.goto(url);
       const fig = (k) => `figure.rendition >> nth=${k}`;
       const drawn = (k = 0) => page.evaluate((i) => Number(document.querySelectorAll('figure.rendition')[i].dataset.drawn || 0), k);
@@ -174,6 +178,11 @@ try {
         `the status after Recompute: ${await page.textContent(`${fig(0)} >> .status`)}`);
       // Handles: the editor's handles over the WebGL rendition (no picture
       // from the server, even while playing), draggable through the session.
+      // The page opened with a small script; the handles' bundle (three.js
+      // and the editor's viewer) comes when Handles is first checked.
+      const documentJs = scripts.find((x) => x.path === '/document.js');
+      check(documentJs && documentJs.bytes < 64 * 1024 && !scripts.some((x) => x.path === '/handles.js'),
+        `the page opened with document.js alone (${JSON.stringify(scripts)}), under 64 KiB`);
       const overlay = (k = 0) => `window.asgardDocument.animations.get(0).renditions[${k}].overlay`;
       const handlesOf = (k = 0) => page.evaluate(`${overlay(k)} ? ${overlay(k)}.viewer.handleList() : []`);
       const requestsBeforeHandles = frameRequests;
@@ -181,6 +190,8 @@ try {
       check(await waitFor(async () => (await handlesOf()).some((h) => h.id === 'b3.init_pos' && h.shown), 'the handles'),
         'Handles shows the handles over the rendition');
       check((await renderer()) === 'webgl', `the rendition stays WebGL with Handles on (${await renderer()})`);
+      const handlesJs = scripts.filter((x) => x.path === '/handles.js');
+      check(handlesJs.length === 1 && handlesJs[0].bytes > 100 * 1024, `Handles loaded the handles' bundle once (${JSON.stringify(handlesJs)})`);
       const kinds = [...new Set((await handlesOf()).filter((h) => h.shown).map((h) => h.kind))].sort();
       check(['position', 'rotation', 'velocity'].every((k) => kinds.includes(k)), `the handles' kinds: ${kinds.join(', ')}`);
       await page.locator(`${fig(0)} >> .time`).fill('0');
@@ -250,6 +261,59 @@ try {
       await page.uncheck(`${fig(0)} >> .handles`);
       check(await waitFor(() => page.evaluate(() => document.querySelector('canvas.asgard-handles').style.display === 'none'), 'hidden'),
         'unchecking Handles hides them');
+
+      // A view whose -pos is an expression of t (it pans 1 unit a second):
+      // the renditions follow its camera per frame (the stream's views), as
+      // the slave's pictures do.
+      const stillView = await blobOf(0, frameUrl(3));
+      const panned = `${reread.result.state.text.trimEnd()}\nview pan -pos {{-t} 0 0}\n`;
+      const updated = await other.call('update', { text: panned });
+      check(updated.result && updated.result.simulated && updated.result.simulated.ok,
+        `a view whose -pos is an expression of t is added (${JSON.stringify(updated.error || (updated.result && updated.result.simulated))})`);
+      const cameraAt = (t) => page.evaluate((time) => {
+        const r = window.asgardDocument.animations.get(0).renditions[0];
+        r.player.draw(time);
+        return r.player.camera();
+      }, t);
+      check(await waitFor(async () => {
+        const c0 = await cameraAt(0), c3 = await cameraAt(3);
+        return Math.abs(Math.hypot(...c3.target.map((v, k) => v - c0.target[k])) - 3) < 1e-3;
+      }, 'the moving view'), 'the rendition\'s camera pans with the view: its target moves 3 units from t = 0 to t = 3');
+      for (const [t, slider] of [[1.5, '500'], [3, '1000']]) {
+        await page.locator(`${fig(0)} >> .time`).fill(slider);
+        await waitFor(async () => Number(await page.evaluate(() => document.querySelector('figure.rendition').dataset.t)) === t, 'the slider');
+        const webgl = await blobOf(0, 'canvas'), slave = await blobOf(0, frameUrl(t));
+        check(agree(webgl, slave), `at t = ${t} the WebGL rendition draws the bodies where the slave's picture of the moving view has them (${JSON.stringify(webgl)} vs ${JSON.stringify(slave)})`);
+        // Not where the still view had them: the view moved them on the screen.
+        if (t === 3) check(!agree(webgl, stillView), `the panned picture differs from the still view's (${JSON.stringify(stillView)})`);
+      }
+      await page.screenshot({ path: join(outDir, '6-moving-view.png'), clip: { x: 0, y: 150, width: 640, height: 330 } });
+      // Handles again: the overlay shows the views' handles (the moving
+      // view's, read-only) as the editor does; a click on a body selects it
+      // (the box around it), a click off every body clears the selection.
+      await page.check(`${fig(0)} >> .handles`);
+      check(await waitFor(async () => (await handlesOf()).some((h) => h.kind === 'view' && h.element === 'pan' && h.shown && !h.editable), 'the view handles'),
+        'the overlay shows the moving view\'s handles, read-only');
+      await page.locator(`${fig(0)} >> .time`).fill('500');
+      const target = await page.evaluate(() => {
+        const r = window.asgardDocument.animations.get(0).renditions[0];
+        const box = r.player.canvas.getBoundingClientRect(), p = r.player.project('b2', 1.5);
+        return { x: box.left + p[0], y: box.top + p[1], right: box.right, bottom: box.bottom, left: box.left, top: box.top };
+      });
+      // A point of b2 (about 18 px across here) at least 8 px from every handle shown.
+      const shownHandles = (await handlesOf()).filter((h) => h.shown);
+      const spot = [[0, 0], [6, 0], [-6, 0], [0, 6], [0, -6]].map(([dx, dy]) => ({ x: target.x + dx, y: target.y + dy }))
+        .find((q) => shownHandles.every((h) => Math.hypot(h.x - q.x, h.y - q.y) > 8));
+      const selected = () => page.evaluate(() => document.querySelector('figure.rendition').dataset.selected);
+      if (check(!!spot, 'a point of b2 away from the handles')) {
+        await page.mouse.click(spot.x, spot.y);
+        check(await waitFor(async () => (await selected()) === 'b2', 'the selection'), `a click on b2 selects it (${await selected()})`);
+        check(await page.evaluate(`${overlay(0)}.viewer.selectionBox.visible`), 'the selected body has its box');
+        await page.screenshot({ path: join(outDir, '7-selected.png'), clip: { x: 0, y: 150, width: 640, height: 330 } });
+        await page.mouse.click(target.left + 5, target.bottom - 5);
+        check(await waitFor(async () => (await selected()) === '', 'no selection'), 'a click off every body clears the selection');
+      }
+      await page.uncheck(`${fig(0)} >> .handles`);
       check(errors.length === 0, `no page errors (${errors.join('; ')})`);
 
       // Without WebGL the renditions are the slave's pictures.
@@ -265,7 +329,7 @@ try {
         const f = document.querySelector('figure.rendition');
         return f.dataset.renderer === 'picture' && Number(f.dataset.drawn) >= 1 && !f.querySelector('canvas');
       }), 'the picture fallback'), 'without WebGL the document view shows the slave\'s picture');
-      await plain.screenshot({ path: join(outDir, '6-no-webgl.png') });
+      await plain.screenshot({ path: join(outDir, '8-no-webgl.png') });
       // There, Handles is the slave's picture with the position handles drawn.
       const plainFrame = (await frame(3)).bytes, handlesFrame = (await frame(3, 1)).bytes;
       writeFileSync(join(outDir, 'frame-3.png'), plainFrame);
@@ -278,7 +342,7 @@ try {
         const b = await (await fetch('/frame?a=0&t=3&handles=1')).arrayBuffer();
         return a.byteLength === b.byteLength && new Uint8Array(a).every((x, i) => x === new Uint8Array(b)[i]);
       }), 'handles drawn'), 'without WebGL, Handles shows the slave\'s picture with the position handles');
-      await plain.screenshot({ path: join(outDir, '7-no-webgl-handles.png') });
+      await plain.screenshot({ path: join(outDir, '9-no-webgl-handles.png') });
       other.ws.close();
     } finally {
       await close();

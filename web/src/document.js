@@ -6,26 +6,39 @@
 // them), so playback needs no server round trip.  Handles draws the
 // editor's handles over the WebGL rendition (overlay.js), from the session's
 // parameters this page's WebSocket hears (the `open` answer, `state` and
-// `text` events), and a drag edits the same session as the editor's views.
+// `text` events), and a drag edits the same session as the editor's views;
+// they are a second bundle (handles.js) that the page loads on first use.
 // Where WebGL is missing, and while the slave is down, it shows the slave's
 // picture of the rendition (GET /frame; with its position handles when
 // Handles is on).  Every rendition of one animation follows one clock, so
 // they stay in step.
 import { Connection } from './connection.js';
-import { HandleOverlay } from './overlay.js';
 import { createPlayer } from './player.js';
+
+// The handles (overlay.js with three.js and the editor's viewer) are a
+// bundle of their own, build/web/handles.js, loaded the first time a
+// rendition shows them: the page opens with the player alone.
+let handlesModule = null;
+const loadHandles = () => (handlesModule ||= import(new URL('handles.js', import.meta.url).href));
 
 // The editor server's meshes and poses as the player takes them (plain
 // arrays for its base64 fields; a body without a track keeps its pose; the
-// links and force arrows as the stream has them).
+// links and force arrows as the stream has them).  The camera is the
+// scene's view as the slave's renditions draw it (its last `view`); when
+// that view moves (-follow, -trajectory, or -pos, -rot, -scale expressions
+// of time or state) its camera per frame, [eye target up] from the
+// stream's `views`, which the player follows until the reader turns it.
 export function playerData(meshes, poses) {
   const n = poses.times.length, k = poses.bodies.length;
   const flat = new Float32Array(n * k * 7);
   poses.poses.forEach((frame, i) => flat.set(frame, i * k * 7));
-  // Links and force arrows: the same count of numbers in every frame.
-  const frames = (list) => (list && list.length === n ? Float32Array.from(list.flat()) : new Float32Array(0));
+  // Links, force arrows and cameras: the same count of numbers in every frame.
+  const frames = (list) => (list && list.length === n ? Float32Array.from(list.flat(2)) : new Float32Array(0));
+  const views = poses.views || [];
+  const view = views[views.length - 1];
   return {
     t0: poses.t0, t1: poses.t1, n, times: poses.times, camera: poses.camera, lights: meshes.lights,
+    cameras: view && view.moves ? frames(view.cameras) : new Float32Array(0),
     poses: flat, links: frames(poses.links), arrows: frames(poses.arrows), arrow_length: poses.arrow_length,
     bodies: meshes.bodies.map((b) => {
       const track = poses.bodies.indexOf(b.name);
@@ -121,9 +134,20 @@ class Rendition {
   }
 
   // The handles over the player, made from the animation's scene and
-  // session state.
-  handleOverlay() {
+  // session state once their bundle has loaded; then shown at the clock's
+  // time if Handles is still on.
+  async handleOverlay() {
     if (this.overlay || !this.player) return this.overlay;
+    if (this.loadingHandles) return this.loadingHandles;
+    this.loadingHandles = loadHandles().then(({ HandleOverlay }) => this.makeOverlay(HandleOverlay), (e) => {
+      this.animation.setStatus(`⚠ the handles could not be loaded: ${e.message || e}`);
+      this.loadingHandles = null;
+      return null;
+    });
+    return this.loadingHandles;
+  }
+
+  makeOverlay(HandleOverlay) {
     const a = this.animation;
     this.overlay = new HandleOverlay(this.player, {
       drag: (element, param, values) => a.conn.call('set_parameter', { element, param, values }),
@@ -132,6 +156,8 @@ class Rendition {
     });
     if (a.state) this.overlay.setParameters(a.state);
     if (a.scene0) this.overlay.setScene(a.scene0.meshes, a.scene0.poses);
+    this.overlay.show(false);
+    this.show(a.clock);
     return this.overlay;
   }
 
@@ -155,11 +181,11 @@ class Rendition {
     this.usePicture(this.animation.down || (this.handles.checked && !this.player));
     if (this.picture) return this.drawPicture(clock.t);
     this.player.draw(clock.t);
-    if (this.handles.checked) {
-      const o = this.handleOverlay();
-      o.show(true);
-      o.seek(clock.t);
-    } else if (this.overlay) this.overlay.show(false);
+    if (this.handles.checked && this.overlay) {
+      this.overlay.show(true);
+      this.overlay.seek(clock.t);
+    } else if (this.handles.checked) this.handleOverlay();
+    else if (this.overlay) this.overlay.show(false);
     this.drawn();
   }
 

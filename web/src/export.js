@@ -21,7 +21,7 @@ export function download(what, name) {
 
 // The picture as drawn (the canvas keeps its drawing buffer).
 export function imageBlob(viewer) {
-  viewer.draw();
+  viewer.render();
   return new Promise((resolve, reject) =>
     viewer.canvas.toBlob((b) => (b ? resolve(b) : reject(new Error('the picture cannot be encoded'))), 'image/png'));
 }

@@ -11,40 +11,49 @@
 // scene's `view` elements; the scene's light sources light the picture.
 import * as THREE from 'three';
 import { SphereControls } from './camera.js';
-import { GROUPS, Handle, ParameterIndex, numbers, round, rotationLiteral, rotationOf } from './handles.js';
+import { GROUPS, Handle, HandleBatch, ParameterIndex, numbers, round, rotationLiteral, rotationOf } from './handles.js';
 import { TrajectoryCurve, knotsText, parseKnots } from './trajectory.js';
+import { softwareWebGL } from './webgl.js';
 
 const ZERO = [0, 0, 0];
+// Handle kinds whose place depends on the time shown (graphical.placeHandles).
+const TIMED = new Set(['force', 'torque', 'offset', 'link', 'view']);
 
 // A body's pose between two frames by cubic Hermite interpolation of the
 // poses [x y z qx qy qz qw] and velocities [vx vy vz wx wy wz] (ω in world
 // axes) at both ends, `dt` apart, at fraction s: positions exactly, the
 // quaternion's components with q̇ = ½ (ω, 0) ⊗ q, then normalized.  Set on
-// `object` (its position and quaternion).
-export function hermitePose(pa, va, pb, vb, dt, s, object) {
+// `object` (its position and quaternion).  The pose and velocity of a are
+// read from pa at ia and va at iva, b's from pb at ib and vb at ivb (a
+// frame's arrays of every body, not copied).
+export function hermitePose(pa, va, pb, vb, dt, s, object, ia = 0, iva = 0, ib = ia, ivb = iva) {
   const s2 = s * s, s3 = s2 * s;
-  const h00 = 2 * s3 - 3 * s2 + 1, h10 = s3 - 2 * s2 + s, h01 = -2 * s3 + 3 * s2, h11 = s3 - s2;
-  const mix = (a, da, b, db) => h00 * a + h10 * dt * da + h01 * b + h11 * dt * db;
-  object.position.set(...[0, 1, 2].map((k) => mix(pa[k], va[k], pb[k], vb[k])));
-  const qdot = (q, w) => [  // ½ (ω, 0) ⊗ q for q = [x y z w]
-    0.5 * (q[3] * w[0] + w[1] * q[2] - w[2] * q[1]),
-    0.5 * (q[3] * w[1] + w[2] * q[0] - w[0] * q[2]),
-    0.5 * (q[3] * w[2] + w[0] * q[1] - w[1] * q[0]),
-    -0.5 * (w[0] * q[0] + w[1] * q[1] + w[2] * q[2])];
-  const qa = pa.slice(3, 7);
-  let qb = pb.slice(3, 7);
-  if (qa.reduce((acc, v, k) => acc + v * qb[k], 0) < 0) qb = qb.map((v) => -v);
-  const da = qdot(qa, va.slice(3, 6)), db = qdot(qb, vb.slice(3, 6));
-  const q = [0, 1, 2, 3].map((k) => mix(qa[k], da[k], qb[k], db[k]));
-  const n = Math.hypot(...q) || 1;
-  object.quaternion.set(q[0] / n, q[1] / n, q[2] / n, q[3] / n);
+  const h00 = 2 * s3 - 3 * s2 + 1, h10 = (s3 - 2 * s2 + s) * dt, h01 = -2 * s3 + 3 * s2, h11 = (s3 - s2) * dt;
+  object.position.set(
+    h00 * pa[ia] + h10 * va[iva] + h01 * pb[ib] + h11 * vb[ivb],
+    h00 * pa[ia + 1] + h10 * va[iva + 1] + h01 * pb[ib + 1] + h11 * vb[ivb + 1],
+    h00 * pa[ia + 2] + h10 * va[iva + 2] + h01 * pb[ib + 2] + h11 * vb[ivb + 2]);
+  // The quaternions q = [x y z w] at both ends (b's sign chosen nearer a)
+  // and their derivatives ½ (ω, 0) ⊗ q, mixed component by component (no
+  // arrays: this runs per body per frame of playback).
+  const ax = pa[ia + 3], ay = pa[ia + 4], az = pa[ia + 5], aw = pa[ia + 6];
+  const sign = ax * pb[ib + 3] + ay * pb[ib + 4] + az * pb[ib + 5] + aw * pb[ib + 6] < 0 ? -1 : 1;
+  const bx = sign * pb[ib + 3], by = sign * pb[ib + 4], bz = sign * pb[ib + 5], bw = sign * pb[ib + 6];
+  const wax = va[iva + 3], way = va[iva + 4], waz = va[iva + 5];
+  const wbx = vb[ivb + 3], wby = vb[ivb + 4], wbz = vb[ivb + 5];
+  const x = h00 * ax + h10 * 0.5 * (aw * wax + way * az - waz * ay) + h01 * bx + h11 * 0.5 * (bw * wbx + wby * bz - wbz * by);
+  const y = h00 * ay + h10 * 0.5 * (aw * way + waz * ax - wax * az) + h01 * by + h11 * 0.5 * (bw * wby + wbz * bx - wbx * bz);
+  const z = h00 * az + h10 * 0.5 * (aw * waz + wax * ay - way * ax) + h01 * bz + h11 * 0.5 * (bw * wbz + wbx * by - wby * bx);
+  const w = h00 * aw - h10 * 0.5 * (wax * ax + way * ay + waz * az) + h01 * bw - h11 * 0.5 * (wbx * bx + wby * by + wbz * bz);
+  const n = Math.sqrt(x * x + y * y + z * z + w * w) || 1;
+  object.quaternion.set(x / n, y / n, z / n, w / n);
 }
 
 export class GraphicalViewer {
   constructor(canvas, ui) {
     this.canvas = canvas;
     this.ui = ui;
-    this.renderer = new THREE.WebGLRenderer({ canvas, antialias: true, preserveDrawingBuffer: true });
+    this.renderer = new THREE.WebGLRenderer({ canvas, antialias: !softwareWebGL(), preserveDrawingBuffer: true });
     this.renderer.setPixelRatio(window.devicePixelRatio || 1);
     this.scene = new THREE.Scene();
     this.scene.background = new THREE.Color(0xffffff);
@@ -67,6 +76,8 @@ export class GraphicalViewer {
     this.selectionBox = new THREE.BoxHelper(undefined, 0xff8000);
     this.selectionBox.visible = false;
     this.scene.add(this.handleGroup, this.linkLines, this.paths, this.selectionBox);
+    this.handleBatch = new HandleBatch(this.scene);  // draws the handles
+    this.scene.matrixWorldAutoUpdate = false;  // render() updates the matrices first
     this.selected = null;  // the selected body's name
     this.selectedElement = null;  // the element last picked (a body, or a handle's element)
     this.mode = null;      // a creation waiting for clicks (startPick)
@@ -83,6 +94,7 @@ export class GraphicalViewer {
     this.playing = false;
     this.fitted = false;
     this.raycaster = new THREE.Raycaster();
+    this.raycaster.layers.enableAll();  // the handles' layer too
     this.setupEvents();
     // After setupEvents: a press on a handle disables the controls first.
     this.controls = new SphereControls(this.camera, canvas, { pickPoint: (ev) => { const b = this.pickBody(ev); return b && b.world; } });
@@ -162,7 +174,12 @@ export class GraphicalViewer {
   // meshes: {bodies: [{name, static, centroid, radius, pieces}]};
   // poses: {times, bodies, poses, forces}.
   setScene(meshes, poses) {
-    for (const b of this.bodies.values()) this.scene.remove(b.group);
+    // The old bodies' buffers go (not their materials: a material disposed
+    // of takes the shader program the new ones share).
+    for (const b of this.bodies.values()) {
+      this.scene.remove(b.group);
+      for (const m of [...b.meshes, ...b.edges]) m.geometry.dispose();
+    }
     this.bodies.clear();
     meshes.bodies.forEach((b) => {
       const group = new THREE.Group();
@@ -405,6 +422,7 @@ export class GraphicalViewer {
     });
     ix.ofKind('trajectory').forEach((element) => this.addTrajectory(element, add));
     ix.ofKind('view').forEach((element, i) => this.addView(element, i, add));
+    this.handleBatch.build(this.handles, this.handleSize);
     this.applyVisibility();
     this.placeHandles();
     if (this.ui.knots) this.ui.knots();
@@ -565,10 +583,14 @@ export class GraphicalViewer {
     return [local.x, local.y, local.z].map((v) => round(v));
   }
 
-  placeHandles() {
-    for (const h of this.handles) h.place();
-    for (const line of this.paths.children)
-      line.geometry.setFromPoints(this.pathPoints(line).map((v) => new THREE.Vector3(...v)));
+  // Places the handles (`timed`: only those that move with the shown time —
+  // forces, torques, offsets and link ends on moving bodies, views — when
+  // nothing else changed since all were placed) and the lines between them.
+  placeHandles(timed = false) {
+    for (const h of this.handles) if (!timed || TIMED.has(h.kind)) h.place();
+    if (!timed)
+      for (const line of this.paths.children)
+        line.geometry.setFromPoints(this.pathPoints(line).map((v) => new THREE.Vector3(...v)));
     for (const line of this.linkLines.children) {
       const [a, c] = line.userData.ends.map((h) => h.mesh.visible && h.mesh.position);
       line.visible = !!(a && c);
@@ -676,25 +698,31 @@ export class GraphicalViewer {
     this.resetHandles();  // new sizes and arrow scales
   }
 
-  // Interpolated poses at time t (linear positions, slerped rotations).
-  seek(t) {
+  // Interpolated poses at time t (Hermite from the streamed velocities,
+  // else linear positions and slerped rotations).  `frame`: a frame of
+  // playback (or of the document's clock), which draws at once and moves
+  // only what time moves (the handles placed by the bodies' motion, the
+  // views' cameras); any other call places every handle and asks for a draw.
+  seek(t, frame = false) {
     if (!this.poses) return;
     const { times, poses } = this.poses;
     t = Math.min(Math.max(t, times[0]), times[times.length - 1]);
     this.t = t;
-    let i = 0;
+    // The frame before t: from the last one when playing forward.
+    let i = this.seekFrame && this.seekFrame < times.length - 1 && times[this.seekFrame] <= t ? this.seekFrame : 0;
     while (i + 1 < times.length - 1 && times[i + 1] <= t) ++i;
+    this.seekFrame = i;
     const j = Math.min(i + 1, times.length - 1);
     const s = j > i && times[j] > times[i] ? (t - times[i]) / (times[j] - times[i]) : 0;
     this.frame = s > 0.5 ? j : i;
-    const qa = new THREE.Quaternion(), qb = new THREE.Quaternion();
+    const qa = this.qa || (this.qa = new THREE.Quaternion()), qb = this.qb || (this.qb = new THREE.Quaternion());
     const vel = this.poses.velocities;
+    const a = poses[i], c = poses[j];
     for (const b of this.bodies.values()) {
       if (b.index < 0) continue;
-      const a = poses[i], c = poses[j], k = 7 * b.index;
+      const k = 7 * b.index;
       if (vel && j > i) {
-        hermitePose(a.slice(k, k + 7), vel[i].slice(6 * b.index, 6 * b.index + 6), c.slice(k, k + 7),
-          vel[j].slice(6 * b.index, 6 * b.index + 6), times[j] - times[i], s, b.group);
+        hermitePose(a, vel[i], c, vel[j], times[j] - times[i], s, b.group, k, 6 * b.index);
         continue;
       }
       b.group.position.set(a[k] + s * (c[k] - a[k]), a[k + 1] + s * (c[k + 1] - a[k + 1]), a[k + 2] + s * (c[k + 2] - a[k + 2]));
@@ -709,12 +737,13 @@ export class GraphicalViewer {
       b.group.position.copy(start.p);
       b.group.quaternion.copy(start.q);
     }
-    this.placeHandles();
+    this.placeHandles(frame);
     this.placeSelection();
-    this.ui.slider.value = String(this.frame);
-    this.ui.clock.textContent = `t = ${t.toFixed(2)}`;
+    const slider = String(this.frame), clock = `t = ${t.toFixed(2)}`;
+    if (this.ui.slider.value !== slider) this.ui.slider.value = slider;
+    if (this.ui.clock.textContent !== clock) this.ui.clock.textContent = clock;
     if (this.ui.time) this.ui.time(t);
-    this.draw();
+    if (frame) this.render(); else this.draw();
   }
 
   play() {
@@ -730,19 +759,46 @@ export class GraphicalViewer {
       const t = this.t + (now - last) / 1000;
       last = now;
       if (t >= times[times.length - 1]) {
-        this.seek(times[times.length - 1]);
+        this.seek(times[times.length - 1], true);
         this.play();
         return;
       }
-      this.seek(t);
+      this.seek(t, true);
       requestAnimationFrame(step);
     };
     requestAnimationFrame(step);
   }
 
-  draw() { this.renderer.render(this.scene, this.camera); }
+  // Asks for a draw at the next animation frame: the changes of one event
+  // (a drag step, a message) are drawn once, after the edit has been sent.
+  draw() {
+    if (this.drawRequest) return;
+    this.drawRequest = requestAnimationFrame(() => {
+      this.drawRequest = 0;
+      this.render();
+    });
+  }
+
+  // Draws now (a frame of playback, a picture to export).
+  render() {
+    if (this.drawRequest) {
+      cancelAnimationFrame(this.drawRequest);
+      this.drawRequest = 0;
+    }
+    this.scene.updateMatrixWorld();
+    this.handleBatch.update();
+    this.renderer.render(this.scene, this.camera);
+  }
+
+  // The world matrices as the next draw will have them (a seek or a camera
+  // move draws at the next animation frame; a pick may come before it).
+  syncMatrices() {
+    this.scene.updateMatrixWorld();
+    this.camera.updateMatrixWorld();
+  }
 
   pointer(ev) {
+    this.syncMatrices();
     const r = this.canvas.getBoundingClientRect();
     return new THREE.Vector2(((ev.clientX - r.left) / r.width) * 2 - 1, -((ev.clientY - r.top) / r.height) * 2 + 1);
   }
@@ -818,10 +874,13 @@ export class GraphicalViewer {
       this.dragging = null;
       this.controls.enabled = true;
       try { this.canvas.releasePointerCapture(ev.pointerId); } catch { /* released */ }
-      await this.flushDrag(h);
+      // The newest value leaves now and the re-simulation right after it
+      // (the server answers one view's requests in order).
+      const sent = this.flushDrag(h);
+      this.ui.dragEnd();
+      await sent;
       if (this.resetPending) this.resetHandles();
       this.showLabel('');
-      this.ui.dragEnd();
     };
     this.canvas.addEventListener('pointerup', end);
     this.canvas.addEventListener('pointercancel', end);
@@ -848,9 +907,11 @@ export class GraphicalViewer {
     const h = this.dragging;
     const at = this.dragStart.point.clone().add(p.sub(this.grab));
     h.value = h.valueFrom(at, this.dragStart, this.lastDrag);
+    // The edit leaves before anything is redrawn (the draw waits for the
+    // next animation frame).
+    this.sendDrag(h);
     this.seek(this.poses.times[0]);
     this.showLabel(this.describe(h));
-    this.sendDrag(h);
   }
 
   // Moves the drag plane by `depth` along the view direction: the handle
@@ -863,11 +924,14 @@ export class GraphicalViewer {
 
   // --- selection and clicks for creating elements (seed 4.1) ---------------
 
+  // Whether a click may pick body b: one that moves and is drawn.
+  pickable(b) { return b.index >= 0 && b.group.visible; }
+
   // The body under the pointer: {name, world, local (shape coordinates)}.
   pickBody(ev) {
     this.raycaster.setFromCamera(this.pointer(ev), this.camera);
     const meshes = [];
-    for (const b of this.bodies.values()) if (b.index >= 0 && b.group.visible) meshes.push(...b.meshes);
+    for (const b of this.bodies.values()) if (this.pickable(b)) meshes.push(...b.meshes);
     const hit = this.raycaster.intersectObjects(meshes, false)[0];
     if (!hit) return null;
     const name = hit.object.parent.name, b = this.bodies.get(name);
@@ -955,9 +1019,18 @@ export class GraphicalViewer {
     });
   }
 
+  // Sends the newest value now, without waiting for the one in flight (the
+  // server takes them in order), and waits for both answers.
   async flushDrag() {
+    const before = this.inFlight;
+    if (this.latest) {
+      const { h, values } = this.latest;
+      this.latest = null;
+      const last = this.ui.drag(h.element, h.param, values).catch((e) => this.showLabel(String(e.message || e)));
+      await before;
+      await last;
+    }
     while (this.inFlight) await this.inFlight;
-    if (this.latest) { this.sendDrag(this.latest.h); while (this.inFlight) await this.inFlight; }
   }
 
   showLabel(text) {
@@ -968,6 +1041,7 @@ export class GraphicalViewer {
   // Test and tool hooks.
   bodyNames() { return [...this.bodies.keys()]; }
   toScreen(v) {
+    this.camera.updateMatrixWorld();
     const p = v.clone().project(this.camera);
     const r = this.canvas.getBoundingClientRect();
     return { x: r.left + ((p.x + 1) / 2) * r.width, y: r.top + ((1 - p.y) / 2) * r.height };

@@ -133,6 +133,8 @@ export class Handle {
     }));
     this.mesh.renderOrder = 10;
     this.mesh.userData.handle = this;
+    this.color = color;
+    this.shape = spec.kind === 'position' ? 'octahedron' : spec.kind === 'rotation' ? 'knob' : 'ball';
     this.object = new THREE.Group();
     this.object.add(this.mesh);
     if (spec.anchor) {
@@ -143,6 +145,8 @@ export class Handle {
       this.arrow.renderOrder = 9;
       this.object.add(this.arrow);
     }
+    // Picked and placed here, drawn by a HandleBatch.
+    this.object.traverse((o) => o.layers.set(HANDLE_LAYER));
     this.size = size;
   }
   // The name of the value as the text writes it.
@@ -172,4 +176,117 @@ export class Handle {
     }
   }
   priority() { return PRIORITY[this.kind] ?? 9; }
+}
+
+// The layer of the handles' own objects: placed and picked, not drawn (the
+// viewer's camera sees layer 0 only); a HandleBatch draws them.
+export const HANDLE_LAYER = 1;
+
+const HIDDEN = new THREE.Matrix4().makeScale(0, 0, 0);
+const ORIGIN = new THREE.Vector3(), TIP = new THREE.Vector3();
+
+// All handles in a few draws: an instanced mesh per shape and editability
+// (each handle's colour per instance, its matrix its own mesh's), the
+// arrows' shafts as one set of line segments and their heads as one more
+// instanced mesh.  A hundred bodies have some 400 handles, each of them
+// three draws (knob, shaft, head) when drawn one by one: about 1300 draw
+// calls a frame, where software WebGL spent most of a frame.
+export class HandleBatch {
+  constructor(parent) {
+    this.group = new THREE.Group();
+    parent.add(this.group);
+    this.sets = [];
+    this.arrows = [];
+    // Kept across builds: a material disposed of takes its compiled shader
+    // program with it (tens of milliseconds to make again in software).
+    const knob = (editable) => new THREE.MeshBasicMaterial({
+      depthTest: false, transparent: true, opacity: editable ? 0.8 : 0.9, wireframe: !editable,
+    });
+    this.materials = {
+      true: knob(true), false: knob(false),
+      shaft: new THREE.LineBasicMaterial({ vertexColors: true, depthTest: false, toneMapped: false }),
+      head: new THREE.MeshBasicMaterial({ depthTest: false, toneMapped: false }),
+    };
+  }
+
+  // A new set of handles (all of one size).
+  build(handles, size) {
+    for (const o of this.group.children) {
+      o.geometry.dispose();
+      if (o.dispose) o.dispose();  // an instanced mesh's instance buffers
+    }
+    this.group.clear();
+    this.sets = [];
+    // (Balls of 10 × 7 segments: a handle is a few pixels across, and a
+    // hundred bodies' handles were 110 000 triangles at 14 × 10.)
+    const geometry = {
+      octahedron: () => new THREE.OctahedronGeometry(size * 1.25),
+      knob: () => new THREE.SphereGeometry(size * 0.9, 10, 7),
+      ball: () => new THREE.SphereGeometry(size * 0.8, 10, 7),
+    };
+    const groups = new Map();
+    for (const h of handles) {
+      const key = `${h.shape} ${h.editable}`;
+      if (!groups.has(key)) groups.set(key, []);
+      groups.get(key).push(h);
+    }
+    const color = new THREE.Color();
+    for (const list of groups.values()) {
+      const { shape, editable } = list[0];
+      const mesh = new THREE.InstancedMesh(geometry[shape](), this.materials[editable], list.length);
+      list.forEach((h, i) => mesh.setColorAt(i, color.set(h.color)));
+      mesh.renderOrder = 10;
+      mesh.frustumCulled = false;
+      this.group.add(mesh);
+      this.sets.push({ mesh, list });
+    }
+    this.arrows = handles.filter((h) => h.arrow);
+    const n = this.arrows.length;
+    if (!n) return;
+    const lines = new THREE.BufferGeometry();
+    lines.setAttribute('position', new THREE.BufferAttribute(new Float32Array(6 * n), 3));
+    const colors = new Float32Array(6 * n);
+    this.arrows.forEach((h, i) => {
+      color.set(h.color);
+      for (const k of [0, 3]) colors.set([color.r, color.g, color.b], 6 * i + k);
+    });
+    lines.setAttribute('color', new THREE.BufferAttribute(colors, 3));
+    this.shafts = new THREE.LineSegments(lines, this.materials.shaft);
+    const cone = new THREE.CylinderGeometry(0, 0.5, 1, 5, 1).translate(0, -0.5, 0);
+    this.heads = new THREE.InstancedMesh(cone, this.materials.head, n);
+    this.arrows.forEach((h, i) => this.heads.setColorAt(i, color.set(h.color)));
+    for (const o of [this.shafts, this.heads]) {
+      o.renderOrder = 9;
+      o.frustumCulled = false;
+      this.group.add(o);
+    }
+  }
+
+  // The handles where their own objects are (world matrices up to date).
+  update() {
+    for (const { mesh, list } of this.sets) {
+      list.forEach((h, i) => mesh.setMatrixAt(i, shown(h) && h.mesh.visible ? h.mesh.matrixWorld : HIDDEN));
+      mesh.instanceMatrix.needsUpdate = true;
+    }
+    if (!this.arrows.length) return;
+    const position = this.shafts.geometry.attributes.position;
+    this.arrows.forEach((h, i) => {
+      const on = shown(h) && h.arrow.visible;
+      ORIGIN.set(0, 0, 0);
+      TIP.set(0, on ? 1 : 0, 0);
+      ORIGIN.applyMatrix4(h.arrow.line.matrixWorld);
+      TIP.applyMatrix4(h.arrow.line.matrixWorld);
+      position.setXYZ(2 * i, ORIGIN.x, ORIGIN.y, ORIGIN.z);
+      position.setXYZ(2 * i + 1, TIP.x, TIP.y, TIP.z);
+      this.heads.setMatrixAt(i, on ? h.arrow.cone.matrixWorld : HIDDEN);
+    });
+    position.needsUpdate = true;
+    this.heads.instanceMatrix.needsUpdate = true;
+  }
+}
+
+// Whether a handle's object and the groups holding it are visible.
+function shown(h) {
+  for (let o = h.object; o; o = o.parent) if (!o.visible) return false;
+  return true;
 }

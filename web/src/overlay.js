@@ -9,7 +9,9 @@
 // server round trip; a drag goes through the same session (set_parameter
 // while dragging, a simulation at the end), so every editor and the saved
 // text follow.  A press off every handle turns the player's camera (its
-// trackball, wheel and double-click, as without handles).
+// trackball, wheel and double-click, as without handles); a click on a body
+// selects it.  Trajectories' paths and points and the views' handles are
+// shown too.
 import { GraphicalViewer } from './graphical.js';
 
 // A GraphicalViewer drawing only handles, in the camera of `player`.
@@ -24,6 +26,11 @@ class OverlayViewer extends GraphicalViewer {
     this.renderer.setClearColor(0xffffff, 0);
     this.shown.bodies = false;  // the player draws them
     this.shown.links = false;   // and the links (the ends' handles stay)
+    // Trajectories' paths and points, and the views' handles, as the
+    // editor draws them when their toggles are on (the document view has
+    // no toggles).
+    this.shown.trajectories = true;
+    this.shown.views = true;
     // The player's camera moves; this one's controls never take a press.
     Object.defineProperty(this.controls, 'enabled', { get: () => false, set: () => {} });
   }
@@ -44,10 +51,13 @@ class OverlayViewer extends GraphicalViewer {
     this.controls.target.set(...c.target);
   }
 
-  draw() {
+  render() {
     this.followPlayer();
-    super.draw();
+    super.render();
   }
+
+  // A click selects a body the player draws (this viewer's are hidden).
+  pickable(b) { return b.index >= 0; }
 
   // Picking and dragging use the camera too (between draws).
   pointer(ev) {
@@ -85,6 +95,12 @@ export class HandleOverlay {
       drag: (element, param, values) => actions.drag(element, param, values),
       dragEnd: () => this.endDrag(),
       prompt: () => {},
+      // A click on a body selects it (the box around it, as in the
+      // editor); the figure says which, for readers and tests.
+      selected: (name) => {
+        const figure = this.box.closest('figure');
+        if (figure) figure.dataset.selected = name || '';
+      },
     }, player);
     this.setupCamera();
   }
@@ -105,13 +121,13 @@ export class HandleOverlay {
       if (!last) return;
       this.player.orbit(ev.clientX - last[0], ev.clientY - last[1]);
       last = [ev.clientX, ev.clientY];
-      v.draw();
+      v.render();
     });
     const up = () => { last = null; };
     c.addEventListener('pointerup', up);
     c.addEventListener('pointercancel', up);
-    c.addEventListener('wheel', (ev) => { ev.preventDefault(); this.player.zoom(Math.pow(1.0015, ev.deltaY)); v.draw(); }, { passive: false });
-    c.addEventListener('dblclick', () => { this.player.home(); v.draw(); });
+    c.addEventListener('wheel', (ev) => { ev.preventDefault(); this.player.zoom(Math.pow(1.0015, ev.deltaY)); v.render(); }, { passive: false });
+    c.addEventListener('dblclick', () => { this.player.home(); v.render(); });
   }
 
   startDrag() {
@@ -145,5 +161,6 @@ export class HandleOverlay {
   setScene(meshes, poses) { this.viewer.setScene(meshes, poses); }
   setParameters(state) { this.viewer.setParameters(state.parameters, state.elements); }
   parameterEdited(element, param, values) { this.viewer.parameterEdited(element, param, values); }
-  seek(t) { this.viewer.seek(t); }
+  // A tick of the document's clock: drawn at once, with the player's frame.
+  seek(t) { this.viewer.seek(t, true); }
 }
