@@ -92,8 +92,9 @@ class Simulation {
   std::string BodiesOf(int c) const;
 
   // Takes one step of the component furthest behind (with no after_step
-  // observer, a run of its steps up to 1/64 of the span ahead of the next
-  // component); false when none is eligible (done) or on failure.
+  // observer, a run of up to 64 of its steps while it stays within 1/8 of
+  // the span ahead of the next in the queue); false when none is eligible
+  // (done) or on failure.
   bool StepOnce();
 
   const physics::EquationSystem& system() const { return sys_; }
