@@ -59,11 +59,14 @@ std::string Document(const std::vector<std::string>& scenes) {
 const std::string kBall =
     "simulator -finish 0.5 -frames 4\nshape_set ball -desc \\{-sub \\{-sphere 0.5\\}\\}\n"
     "body b -shape ball -init_dpos \\{1 0 0\\}\n";
-// Two seconds or so of simulation on an idle machine (many small steps),
-// longer than a slave takes to start and load even under AddressSanitizer:
-// a kill after one second lands in the middle of the simulation.
+// About two and a half seconds of simulation on an idle machine (1.8 million
+// small ballistic steps), longer than a slave takes to start and load even under
+// AddressSanitizer: a kill after one second lands in the middle of the
+// simulation, of the first start and of the restarted one.  (At half the
+// steps, about two seconds, a loaded run once saw only one of two kills land
+// while the simulation was under way.)
 const std::string kLong =
-    "simulator -finish 15 -maxstep 0.0002 -collisions 0\n"
+    "simulator -finish 15 -maxstep 0.0001 -collisions 0\n"
     "shape_set ball -desc \\{-sub \\{-sphere 0.2\\}\\}\n"
     "for \\{set i 0\\} \\{$i < 12\\} \\{incr i\\} \\{\n"
     "  body b$i -shape ball -init_pos [list $i 0 0] -init_dpos \\{0 1 0\\}\n"
