@@ -586,6 +586,8 @@ bool CollisionMonitor::CheckEpoch() {
     // impacts of other pairs may still be on record.
     for (auto it = impacts_.rbegin(); it != impacts_.rend() && it->t >= e0; ++it)
       if (it->t < e1 && (Involves(*it, a) || Involves(*it, b))) start = std::max(start, it->t);
+    // A contact its island holds is looked at again when the hop lands.
+    start = std::max(start, HeldUntil(a, b, e0 - epoch_length_));
     if (start >= e1) continue;
     // Two bodies that cannot move (static or asleep) cannot collide; a
     // sleeping body is woken only by an event, which restarts the window.
@@ -661,6 +663,23 @@ Eigen::Vector3d CollisionMonitor::AccelAt(int body, double t, double t1) const {
                    });
   }
   return acc;
+}
+
+double CollisionMonitor::HeldUntil(int a, int b, double from) const {
+  auto moving = [&](const Impact& x, int body) {
+    return sys_.bodies[body].first_var >= 0 && Involves(x, body);
+  };
+  for (auto it = impacts_.rbegin(); it != impacts_.rend() && it->t >= from; ++it) {
+    if (!moving(*it, a) && !moving(*it, b)) continue;
+    // The latest event of either moving body: only a resting one holds.
+    if (!it->resting || it->held.empty()) return -kInf;
+    const auto& list = it->bodies;
+    const auto ia = std::find(list.begin(), list.end(), a) - list.begin();
+    const auto ib = std::find(list.begin(), list.end(), b) - list.begin();
+    const std::pair<int, int> key = std::minmax(static_cast<int>(ia), static_cast<int>(ib));
+    return std::binary_search(it->held.begin(), it->held.end(), key) ? it->hold : -kInf;
+  }
+  return -kInf;
 }
 
 std::optional<Impact> CollisionMonitor::FirstImpact(int a, int b, double start, double end) {
@@ -1231,7 +1250,9 @@ void CollisionMonitor::RespondResting(const Impact& impact) {
   const double hop = HopPeriod(press, std::isfinite(radius) ? radius : 1.0);
   std::vector<collide::SolverContact> contacts;
   double scale = 0.0;
-  for (const PairContact& pc : pairs) {
+  std::vector<char> skipped(pairs.size(), 0);  // pairs with an impact to come
+  for (size_t k = 0; k < pairs.size(); ++k) {
+    const PairContact& pc = pairs[k];
     const bool pushed = pc.min_gap < -separation_;
     const double mu = std::sqrt(sys_.bodies[pc.a].friction * sys_.bodies[pc.b].friction);
     for (const auto& p : pc.points) {
@@ -1242,7 +1263,10 @@ void CollisionMonitor::RespondResting(const Impact& impact) {
       if (!pushed && p.gap > separation_) {
         const double closing =
             -(PointVelocity(pc.b, t, p.point) - PointVelocity(pc.a, t, p.point)).dot(p.normal);
-        if (closing > 2.0 * pressed * hop + 1e-6 * radius / hop) continue;
+        if (closing > 2.0 * pressed * hop + 1e-6 * radius / hop) {
+          skipped[k] = 1;
+          continue;
+        }
       }
       collide::SolverContact c;
       c.a = index[pc.a];
@@ -1290,6 +1314,24 @@ void CollisionMonitor::RespondResting(const Impact& impact) {
     const bool slow = st.v.norm() <= limit && st.w.norm() * r <= limit && steady;
     if (slow) recorded.slow.push_back(body);
     if (!slow || SlowEvents(body) + 1 < kSleepEvents) all_asleep = false;
+  }
+  // The island's contacts are held until its hop lands again: its pairs
+  // that were solved whole (none with an impact to come) between bodies of
+  // the event — its members and the static bodies it touches.
+  if (!all_asleep) {
+    auto position = [&](int body) {
+      auto it = std::find(recorded.bodies.begin(), recorded.bodies.end(), body);
+      if (it == recorded.bodies.end() && sys_.bodies[body].first_var < 0)
+        it = recorded.bodies.insert(it, body);
+      return it == recorded.bodies.end() ? -1 : static_cast<int>(it - recorded.bodies.begin());
+    };
+    for (size_t k = 0; k < pairs.size(); ++k) {
+      if (skipped[k]) continue;
+      const int ia = position(pairs[k].a), ib = position(pairs[k].b);
+      if (ia >= 0 && ib >= 0) recorded.held.push_back(std::minmax(ia, ib));
+    }
+    std::sort(recorded.held.begin(), recorded.held.end());
+    if (!recorded.held.empty()) recorded.hold = t + hop;
   }
   ++counters_.impacts;
   ++counters_.resting_events;

@@ -78,6 +78,14 @@ struct Impact {
   // solve (a spin that grows from one event to the next is not at rest).
   std::vector<Eigen::Vector3d> spin;
   bool resting = false;  // a simultaneous solve of slow contacts, not an impact
+  // Resting events: the island's contacts are held until `hold`, the time
+  // its hop lands again; `held` are those pairs, as positions in `bodies`
+  // (which then also lists the static bodies the island touches).  A held
+  // pair is not searched before `hold` while no later event involves either
+  // of its moving bodies: one event per hop for the island, not one per
+  // contact landing.
+  double hold = 0.0;
+  std::vector<std::pair<int, int>> held;
 };
 
 class CollisionMonitor {
@@ -117,6 +125,9 @@ class CollisionMonitor {
   // Checks the current epoch; returns true when it is complete.
   bool CheckEpoch();
   std::optional<Impact> FirstImpact(int a, int b, double start, double end);
+  // The time until which the pair is held by its island's latest resting
+  // event (Impact::hold), or -inf; `from` bounds how far back to look.
+  double HeldUntil(int a, int b, double from) const;
   void Respond(const Impact& impact);
   struct PairContact {
     int a = -1, b = -1;
