@@ -1,10 +1,17 @@
 // Evaluation driver: interpreters, limits, safety guards, error locations.
 //
 // Design:
-//  * A fresh master interpreter and a safe child ("scene") per evaluation;
-//    the child runs the script, the master hosts the element commands.  The
-//    child additionally loses `interp`, `after`, `vwait` and `update` (nested
-//    interpreters escape the limits; the others wait on the event loop).
+//  * A fresh safe child ("scene") per evaluation runs the script; its
+//    master hosts the element commands.  The master is made once per thread
+//    and kept: creating it was a third of a small scene's evaluation (each
+//    Tcl_CreateInterp builds Tcl's whole command table).  Scripts never run
+//    in it; after each evaluation the child is deleted with every alias into
+//    the master, the master's "asgard_*" commands (whose client data belonged
+//    to that evaluation) are deleted and its result is reset.  After a Tcl
+//    panic both are abandoned and the next evaluation starts a new master.
+//    The child additionally loses `interp`, `after`, `vwait` and `update`
+//    (nested interpreters escape the limits; the others wait on the event
+//    loop).
 //  * Limits on the child: a command count (relative to what the setup used)
 //    and a wall-clock deadline checked at every limit check (granularity 1),
 //    which also catches `while 1 {}` -- a compiled empty loop runs no
@@ -619,15 +626,44 @@ bool PastDeadline(const std::chrono::steady_clock::time_point& deadline) {
   return std::chrono::steady_clock::now() >= deadline;
 }
 
-// Owns the interpreters of one evaluation.
+// The master interpreter kept by this thread between evaluations (Tcl
+// interpreters belong to the thread that made them); deleted when the thread
+// ends.
+struct KeptMaster {
+  Tcl_Interp* interp = nullptr;
+  KeptMaster() = default;
+  KeptMaster(const KeptMaster&) = delete;
+  KeptMaster& operator=(const KeptMaster&) = delete;
+  ~KeptMaster() {
+    if (interp != nullptr) Tcl_DeleteInterp(interp);
+  }
+};
+thread_local KeptMaster kept_master;
+
+// Owns the child interpreter of one evaluation, and returns the master to
+// this thread's keeping afterwards.
 class Interps {
  public:
   explicit Interps(EvalContext& ctx) : ctx_(ctx) {
-    ctx.master = Tcl_CreateInterp();
+    if (kept_master.interp == nullptr) kept_master.interp = Tcl_CreateInterp();
+    ctx.master = kept_master.interp;
     if (ctx.master != nullptr) ctx.child = Tcl_CreateSlave(ctx.master, "scene", 1);
   }
   ~Interps() {
-    if (ctx_.master != nullptr && !abandoned) Tcl_DeleteInterp(ctx_.master);
+    if (abandoned) {
+      kept_master.interp = nullptr;  // leaked with the child, never touched again
+    } else if (ctx_.master != nullptr) {
+      if (ctx_.child != nullptr) Tcl_DeleteInterp(ctx_.child);
+      if (Tcl_EvalEx(ctx_.master, "foreach c [info commands ::asgard_*] {rename $c {}}", -1,
+                     TCL_EVAL_GLOBAL) != TCL_OK) {
+        // Cannot happen with a sound master; start afresh rather than keep one
+        // holding commands of a finished evaluation.
+        Tcl_DeleteInterp(ctx_.master);
+        kept_master.interp = nullptr;
+      } else {
+        Tcl_ResetResult(ctx_.master);
+      }
+    }
     ctx_.master = nullptr;
     ctx_.child = nullptr;
   }

@@ -2,8 +2,9 @@
 //
 //   scene text ──Evaluate──▶ scene::Scene (elements + diagnostics)
 //
-// Each evaluation creates a fresh Tcl interpreter and a *safe* child
-// interpreter (Tcl_CreateSlave(..., isSafe=1)) in which the script runs, with
+// Each evaluation creates a fresh *safe* child interpreter
+// (Tcl_CreateSlave(..., isSafe=1)) of a parent interpreter that each thread
+// makes once and keeps (scripts never run in it).  The script runs in the child, with
 // a command-count limit and a time limit (Tcl_LimitSetCommands /
 // Tcl_LimitSetTime), so an endless loop ends with a clear error.  The element
 // commands (simulator shape_set body link force torque trajectory lightsource

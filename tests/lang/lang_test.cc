@@ -521,6 +521,27 @@ TEST(LangInterp, EachEvaluationStartsFromAFreshInterpreter) {
   EXPECT_NE(b.diagnostics[0].message.find("leftover"), std::string::npos);
 }
 
+// The parent interpreter that hosts the element commands is kept by the
+// thread between evaluations: nothing of one evaluation's elements, failures
+// or run counts may reach the next.
+TEST(LangInterp, TheKeptParentInterpreterCarriesNothingToTheNextEvaluation) {
+  Scene a = Eval(std::string(kBox) + "body b1 -shape box\nbody b2 -shape box -mass 0\n");
+  ASSERT_EQ(a.bodies.size(), 1u);
+  ASSERT_EQ(a.diagnostics.size(), 1u);
+  Scene b = Eval("body b3 -shape box\n");
+  ASSERT_EQ(b.diagnostics.size(), 1u);
+  EXPECT_EQ(b.diagnostics[0].message, "body 'b3': unknown shape_set 'box'");
+  EXPECT_EQ(b.diagnostics[0].span.line, 1);
+  EXPECT_TRUE(b.bodies.empty());
+  for (int i = 0; i < 3; ++i) {
+    Scene c = Eval(std::string(kBox) + "foreach n {x y} {body $n -shape box}\n");
+    EXPECT_TRUE(c.diagnostics.empty()) << AllDiagnostics(c);
+    ASSERT_EQ(c.bodies.size(), 2u);
+    EXPECT_EQ(c.bodies[0].run_count, 2);
+    EXPECT_EQ(c.shape_sets.size(), 1u);
+  }
+}
+
 TEST(LangInterp, ErrorsInsideCatchAreStillReportedOnce) {
   Scene s = Eval(std::string(kBox) + "catch {body b1 -shape box -mass 0}\nbody b2 -shape box\n");
   ASSERT_EQ(s.diagnostics.size(), 1u);
