@@ -332,8 +332,12 @@ struct CoreRun {
   std::string error;  // stderr
 };
 
-CoreRun RunCore(const std::string& frames, const std::string& args = "") {
-  const fs::path dir = Scratch("core");
+// Runs asgard-core on `frames` in the scratch folder `scratch` (its own per
+// test: ctest runs tests in parallel, and a shared folder let one test read
+// the other's output).
+CoreRun RunCore(const std::string& scratch, const std::string& frames,
+                const std::string& args = "") {
+  const fs::path dir = Scratch(scratch);
   std::ofstream(dir / "in", std::ios::binary) << frames;
   const std::string cmd = kCore + " " + args + " < " + (dir / "in").string() + " > " +
                           (dir / "out").string() + " 2> " + (dir / "err").string();
@@ -353,7 +357,8 @@ CoreRun RunCore(const std::string& frames, const std::string& args = "") {
 TEST(HostileProtocol, DeeplyNestedMessageIsAnsweredWithAnError) {
   std::string deep = "{\"jsonrpc\":\"2.0\",\"id\":1,\"method\":\"load\",\"params\":{\"text\":";
   deep += std::string(1000000, '[') + std::string(1000000, ']') + "}}";
-  const CoreRun r = RunCore(Frame(deep) + Frame(R"({"jsonrpc":"2.0","id":2,"method":"shutdown"})"));
+  const CoreRun r =
+      RunCore("core_deep", Frame(deep) + Frame(R"({"jsonrpc":"2.0","id":2,"method":"shutdown"})"));
   EXPECT_EQ(r.status, 0) << r.error;
   EXPECT_NE(r.out.find("nested more than 64 deep"), std::string::npos) << r.out;
   EXPECT_NE(r.out.find("\"id\":2"), std::string::npos) << r.out;  // still answering
@@ -519,7 +524,7 @@ TEST(HostileProtocol, EveryBadMessageIsAnsweredWithItsPlace) {
   std::string frames;
   for (const auto& c : cases) frames += Frame(c.body);
   frames += Frame(Req(99, "shutdown"));
-  const CoreRun r = RunCore(frames, "--shm-fd 5 --shm-size 65536 5<>" + shm);
+  const CoreRun r = RunCore("core_catalogue", frames, "--shm-fd 5 --shm-size 65536 5<>" + shm);
   EXPECT_EQ(r.status, 0) << r.error;
   std::vector<std::string> answers;
   std::istringstream lines(r.out);
