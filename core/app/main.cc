@@ -2,7 +2,7 @@
 //
 //   asgard check FILE
 //   asgard simulate FILE [--until T] [--rtol R] [--atol A] [--out FILE.csv|FILE.json]
-//                        [--stats] [--method auto|dp5|tr|trbdf2] [--pair dp5|tsit5]
+//                        [--stats] [--method auto|dp5|esdirk3|tr|trbdf2] [--pair dp5|tsit5]
 //                        [--single] [--sequential] [--no-collisions] [--quiet]
 //   asgard edit FILE --set ELEMENT.PARAM=VALUE ... [-o OUT] [--list]
 //   asgard render FILE ... -o OUT       (render_cmd.cc)
@@ -93,8 +93,9 @@ Options:
                     (simulator -frames, default 30 per second): .csv or .json
   --stats           print the components (their variables) and solver counters
   --method M        auto (default: the explicit pair where a component is not stiff,
-                    TR / TR-BDF2 where it is), dp5 (always the explicit pair),
-                    tr, trbdf2
+                    the L-stable ESDIRK 3(2) where it is), dp5 (always the
+                    explicit pair), esdirk3 (always the ESDIRK), tr (the
+                    trapezoidal rule, TR-BDF2 where stiff), trbdf2
   --pair P          the explicit pair: tsit5 (Tsitouras 5(4), default) or
                     dp5 (Dormand-Prince 5(4))
   --single          solve all equations as one component (no partitioning)
@@ -205,12 +206,12 @@ bool WriteJson(const std::string& path, const std::string& scene_file, const Fra
 
 void PrintCounters(std::ostream& out, const asgard::solver::Counters& c) {
   out << "  steps " << c.steps << " (rejected " << c.rejected_steps << ", at rest " << c.rest_steps
-      << ", ballistic " << c.ballistic_steps << ", explicit " << c.explicit_steps << ", TR-BDF2 "
-      << c.trbdf2_steps << ", method switches " << c.method_switches << "), rhs evaluations "
-      << c.rhs_evaluations << ", jacobians " << c.jacobian_evaluations << ", factorizations "
-      << c.factorizations << ", newton iterations " << c.newton_iterations << " (failures "
-      << c.newton_failures << "), truncated steps " << c.truncated_steps << ", restarts "
-      << c.restarts << "\n";
+      << ", ballistic " << c.ballistic_steps << ", explicit " << c.explicit_steps << ", ESDIRK "
+      << c.esdirk_steps << ", TR-BDF2 " << c.trbdf2_steps << ", method switches "
+      << c.method_switches << "), rhs evaluations " << c.rhs_evaluations << ", jacobians "
+      << c.jacobian_evaluations << ", factorizations " << c.factorizations << ", newton iterations "
+      << c.newton_iterations << " (failures " << c.newton_failures << "), truncated steps "
+      << c.truncated_steps << ", restarts " << c.restarts << "\n";
 }
 
 void PrintStats(const asgard::pipeline::Run& run) {
@@ -394,10 +395,12 @@ int Simulate(const std::vector<std::string>& args) {
         opts.solver.method = asgard::solver::SolverOptions::Method::kTrapezoidal;
       else if (v == "trbdf2")
         opts.solver.method = asgard::solver::SolverOptions::Method::kTrBdf2;
+      else if (v == "esdirk3")
+        opts.solver.method = asgard::solver::SolverOptions::Method::kEsdirk;
       else if (v == "dp5")
         opts.solver.method = asgard::solver::SolverOptions::Method::kExplicit;
       else
-        return Usage("--method must be auto, dp5, tr or trbdf2", kSimulateHelp);
+        return Usage("--method must be auto, dp5, esdirk3, tr or trbdf2", kSimulateHelp);
     } else if (a == "--pair") {
       auto v = value("--pair");
       if (v == "dp5")

@@ -7,10 +7,16 @@
 //                 explicit, FSAL; PI step control
 //                 (h_new = h · 0.9 err^−0.17 err_prev^0.04); its 4th-order
 //                 continuous extension goes into the waveform as a bubble
-//   stiff ─────▶ trapezoidal rule (TR)   y = x + h/2 (f(x) + f(y))   the seed's rule
-//                TR-BDF2, γ = 2 − √2      y_γ = x + γh/2 (f(x) + f(y_γ))
-//                                         y = (y_γ − (1−γ)² x)/(γ(2−γ)) + d h f(y)
-//                with d = (1−γ)/(2−γ) = γ/2: both stages use I − d h J
+//   stiff ─────▶ ESDIRK 3(2) (esdirk.h): explicit first stage, three
+//                implicit stages sharing the matrix I − γhJ, stiffly
+//                accurate, L-stable, order 3 with an order-2 estimate
+//   rows prescribed, not stiff ──▶ trapezoidal rule (TR)
+//                                   y = x + h/2 (f(x) + f(y))   the seed's rule
+//   --method tr | trbdf2: TR, and TR-BDF2 (γ = 2 − √2) where TR would be
+//                stiff or has no history:
+//                y_γ = x + γh/2 (f(x) + f(y_γ))
+//                y = (y_γ − (1−γ)² x)/(γ(2−γ)) + d h f(y),  d = γ/2
+//                (both stages use I − d h J)
 //
 //   Stiffness is judged from the spectral radius ρ of ∂f/∂x, never from a
 //   matrix norm (the quaternion and angular-velocity rows make ‖J‖ orders
@@ -26,13 +32,18 @@
 //   Rejected: (1) one method everywhere — a 2nd-order method needs ~10× the
 //   steps of a 5th-order one for 1e-6 on a pendulum, an explicit one cannot
 //   cross a stiff link's transient; (2) Rosenbrock methods — they need an
-//   exact Jacobian every step, which exact joints do not have symbolically.
+//   exact Jacobian every step, which exact joints do not have symbolically;
+//   (3) TR-BDF2 for stiff components: order 2, so at
+//   tol 1e-6 a stiff link took ~10× the steps of CVODE's order-5 BDF on its
+//   smooth forced motion; (4) Radau IIA 5: a 3n×3n (or complex n×n) system
+//   per iteration, where the ESDIRK's stages reuse one real n×n LU.
 //
 //   TR is A-stable but its amplification tends to −1 for h|λ| → ∞: a stiff,
-//   critically damped link then rings instead of settling.  TR-BDF2 is
-//   L-stable (amplification → 0).  An implicit step uses TR-BDF2 when hρ > 3
-//   or when there is no step history (first step, after a breakpoint or a
-//   collision); otherwise TR.
+//   critically damped link then rings instead of settling.  The ESDIRK is
+//   L-stable (amplification → 0).  A component that is implicit because it
+//   is stiff takes ESDIRK steps; one that is implicit only because a
+//   trajectory or a hold prescribes rows takes TR steps while it has a step
+//   history and hρ ≤ 3 (one Newton solve a step), ESDIRK steps otherwise.
 //
 // Exact joints (physics/joints.h) are applied after the tape inside every
 // evaluation of f; a component holding jointed bodies takes its Jacobian by
@@ -50,7 +61,13 @@
 //   TR-BDF2: LTE ≈ 2Ch (f₀/γ − f_γ/(γ(1−γ)) + f₁/(1−γ)), C = (−3γ²+4γ−2)/(12(2−γ)),
 //            filtered through M⁻¹ (Hosea & Shampine 1996) so stiff modes
 //            that have decayed do not hold the step down.
-//   h_next = h · clamp(0.9 err^(−1/3), 0.2, 5).
+//   ESDIRK:  h Σ (b − b̂)_i k_i, filtered through M⁻¹ likewise; and the
+//            step's interpolant (cubic Hermite) against the stage at
+//            t + 0.6h, row j divided by 1 − γhJ_jj (DenseError): a stiff
+//            link that holds a body to a moving point has exact step ends
+//            at any h, and only this check keeps the path between them.
+//   h_next = h · clamp(0.9 err^(−1/3), 0.2, 5)  (every implicit estimate is
+//   of order 3 in h).
 //
 // Rest steps (seed 5.2.4: skip what a scene does not need): at a sample of
 // an autonomous mode with no inputs, where the state would move over a span
@@ -104,11 +121,13 @@ struct SolverOptions {
   bool fuse_bodies = true;
   enum class Schedule : uint8_t { kEventDriven, kSequential };
   Schedule schedule = Schedule::kEventDriven;
-  // kAuto: the explicit Dormand–Prince pair where the component is not stiff,
-  // TR / TR-BDF2 where it is (decided from a spectral-radius estimate and
+  // kAuto: the explicit pair where the component is not stiff, the ESDIRK
+  // where it is (decided from a spectral-radius estimate and
   // re-decided during the run).  kExplicit: always Dormand–Prince (rows a
   // trajectory or a hold prescribes still use the implicit path).
-  enum class Method : uint8_t { kAuto, kTrapezoidal, kTrBdf2, kExplicit };
+  // kEsdirk: always the implicit ESDIRK 3(2) (esdirk.h); kTrapezoidal: TR,
+  // with TR-BDF2 where stiff or without history; kTrBdf2: always TR-BDF2.
+  enum class Method : uint8_t { kAuto, kTrapezoidal, kTrBdf2, kExplicit, kEsdirk };
   Method method = Method::kAuto;
   // The explicit pair: Tsitouras 5(4) (smaller error constants at the same
   // 7 stages, FSAL, 4th-order dense output; 8–19% fewer evaluations than
@@ -122,6 +141,7 @@ struct Counters {
   long steps = 0;
   long rejected_steps = 0;
   long trbdf2_steps = 0;
+  long esdirk_steps = 0;     // steps of the ESDIRK 3(2) (esdirk.h)
   long explicit_steps = 0;   // steps of the explicit pair
   long method_switches = 0;  // explicit ⇄ implicit decisions
   long rhs_evaluations = 0;
@@ -147,7 +167,7 @@ struct CounterField {
 #define ASGARD_COUNTER(m) CounterField{#m, &Counters::m}
 inline constexpr CounterField kCounterFields[] = {
     ASGARD_COUNTER(steps), ASGARD_COUNTER(rejected_steps), ASGARD_COUNTER(trbdf2_steps),
-    ASGARD_COUNTER(explicit_steps), ASGARD_COUNTER(method_switches),
+    ASGARD_COUNTER(esdirk_steps), ASGARD_COUNTER(explicit_steps), ASGARD_COUNTER(method_switches),
     ASGARD_COUNTER(rhs_evaluations), ASGARD_COUNTER(jacobian_evaluations),
     ASGARD_COUNTER(factorizations), ASGARD_COUNTER(newton_iterations),
     ASGARD_COUNTER(newton_failures), ASGARD_COUNTER(truncated_steps), ASGARD_COUNTER(restarts),
@@ -248,7 +268,9 @@ class Component {
               bool landing);
   void Rates(const Mode& m, double t, const double* y, const double* fy, const double* y0, double h,
              double* rate, Side side);
-  bool TryStep(double h, bool landing, Attempt& out);
+  bool TryStep(double h, bool landing, bool fresh_jacobian, Attempt& out);
+  double DenseError(const Mode& m, double h);
+  bool EsdirkStep(Mode& m, double h, bool landing);
   bool TryExplicitStep(const Mode& m, double h, bool landing, Attempt& out);
   template <const ExplicitPair& P>
   bool TryExplicitStepWith(const Mode& m, double h, bool landing, Attempt& out);

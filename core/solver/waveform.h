@@ -44,6 +44,9 @@ struct SampleInfo {
   uint8_t calm_votes = 0;   // explicit: consecutive steps that did not look stiff
   double err_prev = 1e-4;   // last accepted error estimate (PI step control)
   long jumps_seen = 0;      // restart: the component's jump generation it applied
+  // Implicit: the sample whose Jacobian the step from here reuses (−1: take
+  // it here).  Kept with the sample so a resumed run reuses the same one.
+  int jac_from = -1;
 };
 
 class Waveform {

@@ -7,19 +7,13 @@
 #include <string>
 
 #include "core/pipeline/pipeline.h"
+#include "tests/solver/simulate_checked.h"
 
 namespace asgard {
 namespace {
 
 pipeline::Run Simulate(const std::string& text, double rtol = 1e-8, double atol = 1e-10) {
-  pipeline::RunOptions opts;
-  opts.solver.rtol = rtol;
-  opts.solver.atol = atol;
-  opts.use_scene_tolerances = false;
-  pipeline::Run run = pipeline::Simulate(text, opts);
-  for (const auto& d : run.diagnostics) ADD_FAILURE() << d.span.line << ": " << d.message;
-  EXPECT_TRUE(run.ok) << run.solver_error;
-  return run;
+  return testing::SimulateChecked(text, rtol, atol);
 }
 
 // A ball on an exact joint at a point `len` above (θ = 0, hanging) or below
