@@ -46,6 +46,9 @@ constexpr double kNewtonFailureCut = 0.25;
 // is kept as well.
 constexpr int kReuseIterations = 3;
 constexpr int kMaxJacobianAge = 20;
+// Components of at most this many variables difference their Jacobian
+// (PrepareJacobian).
+constexpr int kNumericJacobianMax = 32;
 constexpr double kKeepStepFactor = 1.2;
 // Steps that must argue for the other method before it changes (one noisy
 // estimate must not flip it back and forth); an explicit step size hovering
@@ -113,6 +116,10 @@ struct Component::Mode {
   // Built on first use (PrepareJacobian): everything below but `out` of f.
   expr::Tape fj_tape;           // the same followed by the Jacobian entries
   std::vector<int> jrow, jcol;  // local (row, col) of each Jacobian entry
+  // Differenced instead (EvalJacobianNumerically): the entries of column c
+  // are by_col[col_begin[c] .. col_begin[c+1]).
+  bool numeric_jacobian = false;
+  std::vector<int> by_col, col_begin;
   TapeCache::Shared gdot_tape;  // ∂g/∂t for prescribed rows whose g depends on t only
   std::vector<int> gdot_rows;
   std::vector<int> mrow, mcol;  // matrix pattern: n diagonal entries, then jrow/jcol
@@ -418,12 +425,18 @@ void Component::EvalF(const Mode& m, double t, const double* y, double* out, Sid
 }
 
 // The Jacobian's pattern, tape and linear solver, built when a mode first
-// needs them (a component at rest never does).
+// needs them (a component at rest never does).  A jointed component
+// differences the whole f (the joint solve has no symbolic form); so does a
+// small one: its n + 1 right-hand sides per Jacobian cost less than
+// differentiating and compiling its equations once, now that a Jacobian
+// serves many steps (Step) — on the stiff-link benchmark the symbolic
+// Jacobian was 41% of a run at rtol 1e-2.
 void Component::PrepareJacobian(Mode& m) {
   if (m.solver) return;
   auto& pool = const_cast<expr::Pool&>(sys_.pool);  // derivatives extend the pool
   const int n = static_cast<int>(vars_.size());
   std::vector<expr::NodeId> all = m.outputs;
+  m.numeric_jacobian = joints_ || n <= kNumericJacobianMax;
   for (int j = 0; j < n && joints_; ++j)
     for (int c = 0; c < n; ++c) {
       m.jrow.push_back(j);
@@ -433,15 +446,25 @@ void Component::PrepareJacobian(Mode& m) {
     for (int v : pool.Variables(m.outputs[j])) {
       auto it = std::lower_bound(vars_.begin(), vars_.end(), v);
       if (it == vars_.end() || *it != v) continue;
-      const expr::NodeId d = pool.Derivative(m.outputs[j], v);
-      if (pool.IsConst(d) && *pool.ConstValue(d) == 0.0) continue;
+      if (!m.numeric_jacobian) {
+        const expr::NodeId d = pool.Derivative(m.outputs[j], v);
+        if (pool.IsConst(d) && *pool.ConstValue(d) == 0.0) continue;
+        all.push_back(d);
+      }
       m.jrow.push_back(j);
       m.jcol.push_back(static_cast<int>(it - vars_.begin()));
-      all.push_back(d);
     }
   }
-  // Jointed components difference the whole f (EvalJacobianNumerically).
-  if (!joints_) m.fj_tape = expr::Tape::Compile(pool, all);
+  if (m.numeric_jacobian) {
+    m.col_begin.assign(n + 1, 0);
+    for (int c : m.jcol) ++m.col_begin[c + 1];
+    for (int c = 0; c < n; ++c) m.col_begin[c + 1] += m.col_begin[c];
+    m.by_col.assign(m.jcol.size(), 0);
+    std::vector<int> fill(m.col_begin.begin(), m.col_begin.end() - 1);
+    for (size_t e = 0; e < m.jcol.size(); ++e) m.by_col[fill[m.jcol[e]]++] = static_cast<int>(e);
+  } else {
+    m.fj_tape = expr::Tape::Compile(pool, all);
+  }
   for (int j = 0; j < n; ++j) {
     m.mrow.push_back(j);
     m.mcol.push_back(j);
@@ -456,7 +479,7 @@ void Component::PrepareJacobian(Mode& m) {
 
 void Component::EvalJacobian(Mode& m, double t, const double* y) {
   PrepareJacobian(m);
-  if (joints_) return EvalJacobianNumerically(m, t, y);
+  if (m.numeric_jacobian) return EvalJacobianNumerically(m, t, y);
   Load(t, y, Side::kRight);
   const expr::ExternFn& ext = sim_.externs();
   m.fj_tape.Evaluate(t, sim_.values(), m.out.data(), &ext);
@@ -472,13 +495,18 @@ void Component::EvalJacobianNumerically(Mode& m, double t, const double* y) {
   EvalF(m, t, pv_.data(), c_.data(), Side::kRight, false);
   const double root_eps = std::sqrt(std::numeric_limits<double>::epsilon());
   for (size_t col = 0; col < n; ++col) {
+    const int begin = m.col_begin[col], end = m.col_begin[col + 1];
+    if (begin == end) continue;  // no equation reads this variable
     const double saved = pv_[col];
     const double d = root_eps * std::max(std::abs(saved), 1e-3);
     pv_[col] = saved + d;
     EvalF(m, t, pv_.data(), pw_.data(), Side::kRight, false);
     pv_[col] = saved;
     const double step = (saved + d) - saved;
-    for (size_t row = 0; row < n; ++row) m.jvals[row * n + col] = (pw_[row] - c_[row]) / step;
+    for (int i = begin; i < end; ++i) {
+      const int e = m.by_col[i];
+      m.jvals[e] = (pw_[m.jrow[e]] - c_[m.jrow[e]]) / step;
+    }
   }
   ++counters_.jacobian_evaluations;
   factored_a_ = -1;
