@@ -5,24 +5,38 @@
 
 namespace asgard::solver {
 
+namespace {
+constexpr size_t kBlockBytes = 32 * 1024;
+}
+
+Waveform::Waveform(int n) : n_(n) {
+  const size_t row_bytes = 3 * sizeof(double) * static_cast<size_t>(std::max(n, 1));
+  while ((row_bytes << (block_shift_ + 1)) <= kBlockBytes) ++block_shift_;
+  block_mask_ = (size_t{1} << block_shift_) - 1;
+}
+
 void Waveform::Append(double t, const double* x, const double* f, SampleInfo info,
                       const double* bubble) {
-  times_.push_back(t);
-  x_.insert(x_.end(), x, x + n_);
-  f_.insert(f_.end(), f, f + n_);
+  const size_t k = times_.size();
+  const size_t block = k >> block_shift_;
+  if (block == blocks_.size())
+    blocks_.emplace_back((size_t{1} << block_shift_) * 3 * static_cast<size_t>(n_));
+  double* row = blocks_[block].data() + (k & block_mask_) * 3 * n_;
+  std::copy(x, x + n_, row);
+  std::copy(f, f + n_, row + n_);
   if (bubble)
-    b_.insert(b_.end(), bubble, bubble + n_);
+    std::copy(bubble, bubble + n_, row + 2 * n_);
   else
-    b_.resize(b_.size() + n_, 0.0);
+    std::fill(row + 2 * n_, row + 3 * n_, 0.0);
+  times_.push_back(t);
   info_.push_back(info);
 }
 
 void Waveform::Resize(int k) {
   times_.resize(k);
-  x_.resize(static_cast<size_t>(k) * n_);
-  f_.resize(static_cast<size_t>(k) * n_);
-  b_.resize(static_cast<size_t>(k) * n_);
   info_.resize(k);
+  const size_t keep = (static_cast<size_t>(k) + block_mask_) >> block_shift_;
+  if (blocks_.size() > keep) blocks_.resize(keep);
 }
 
 int Waveform::KeepIndex(double t) const {

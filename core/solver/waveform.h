@@ -51,17 +51,17 @@ struct SampleInfo {
 
 class Waveform {
  public:
-  explicit Waveform(int n = 0) : n_(n) {}
+  explicit Waveform(int n = 0);
 
   int variable_count() const { return n_; }
   int size() const { return static_cast<int>(times_.size()); }
   bool empty() const { return times_.empty(); }
   double time(int k) const { return times_[k]; }
   double t_end() const { return times_.back(); }
-  const double* x(int k) const { return &x_[static_cast<size_t>(k) * n_]; }
-  const double* f(int k) const { return &f_[static_cast<size_t>(k) * n_]; }
+  const double* x(int k) const { return Row(k); }
+  const double* f(int k) const { return Row(k) + n_; }
   // Bubble coefficients of the interval ending at sample k (zero: none).
-  const double* bubble(int k) const { return &b_[static_cast<size_t>(k) * n_]; }
+  const double* bubble(int k) const { return Row(k) + 2 * n_; }
   const SampleInfo& info(int k) const { return info_[k]; }
   SampleInfo& info(int k) { return info_[k]; }
 
@@ -85,11 +85,22 @@ class Waveform {
   int Locate(double t, Side side) const;
   double Interpolate(int i, double t, Side side, bool rate) const;
 
+  const double* Row(int k) const {
+    return blocks_[static_cast<size_t>(k) >> block_shift_].data() +
+           (static_cast<size_t>(k) & block_mask_) * 3 * n_;
+  }
+
   int n_;
   std::vector<double> times_;
-  std::vector<double> x_;
-  std::vector<double> f_;
-  std::vector<double> b_;
+  // Sample k's row x | f | bubble (3n values) is row k mod 2^block_shift_
+  // of block k >> block_shift_.  Blocks of fixed size (about 32 KiB) are
+  // never moved: appending copies only the new row, and a long run grows by
+  // one block at a time instead of reallocating (and first touching) all
+  // its samples again at each doubling — which had cost the double
+  // pendulum's run 30% in page faults.
+  std::vector<std::vector<double>> blocks_;
+  int block_shift_ = 0;
+  size_t block_mask_ = 0;
   std::vector<SampleInfo> info_;
   // The segment the last lookup found: lookups come in runs close in time
   // (collision queries, readers' steps), so most need no binary search.
