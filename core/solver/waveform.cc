@@ -6,22 +6,32 @@
 namespace asgard::solver {
 
 namespace {
-constexpr size_t kBlockBytes = 32 * 1024;
+constexpr size_t kFirstSegmentBytes = 4 * 1024;
 }
 
 Waveform::Waveform(int n) : n_(n) {
   const size_t row_bytes = 3 * sizeof(double) * static_cast<size_t>(std::max(n, 1));
-  while ((row_bytes << (block_shift_ + 1)) <= kBlockBytes) ++block_shift_;
-  block_mask_ = (size_t{1} << block_shift_) - 1;
+  while ((row_bytes << (first_shift_ + 1)) <= kFirstSegmentBytes) ++first_shift_;
+}
+
+Waveform::Waveform(const Waveform& o) : Waveform(o.n_) {
+  for (int k = 0; k < o.size(); ++k) Append(o.time(k), o.x(k), o.f(k), o.info(k), o.bubble(k));
+  hint_ = o.hint_;
+}
+
+Waveform& Waveform::operator=(const Waveform& o) {
+  if (this != &o) *this = Waveform(o);
+  return *this;
 }
 
 void Waveform::Append(double t, const double* x, const double* f, SampleInfo info,
                       const double* bubble) {
   const size_t k = times_.size();
-  const size_t block = k >> block_shift_;
-  if (block == blocks_.size())
-    blocks_.emplace_back((size_t{1} << block_shift_) * 3 * static_cast<size_t>(n_));
-  double* row = blocks_[block].data() + (k & block_mask_) * 3 * n_;
+  const size_t q = (k >> first_shift_) + 1;
+  const size_t b = static_cast<size_t>(63 - __builtin_clzll(q));
+  if (b == segments_.size())
+    segments_.emplace_back(new double[(size_t{1} << (b + first_shift_)) * 3 * n_]);
+  double* row = const_cast<double*>(Row(static_cast<int>(k)));
   std::copy(x, x + n_, row);
   std::copy(f, f + n_, row + n_);
   if (bubble)
@@ -35,8 +45,13 @@ void Waveform::Append(double t, const double* x, const double* f, SampleInfo inf
 void Waveform::Resize(int k) {
   times_.resize(k);
   info_.resize(k);
-  const size_t keep = (static_cast<size_t>(k) + block_mask_) >> block_shift_;
-  if (blocks_.size() > keep) blocks_.resize(keep);
+  // Keep the segments that hold samples 0 .. k−1 (and the next, to be
+  // refilled at once by a resumed run).
+  size_t keep = 0;
+  if (k > 0)
+    keep =
+        static_cast<size_t>(64 - __builtin_clzll((static_cast<size_t>(k - 1) >> first_shift_) + 1));
+  if (segments_.size() > keep + 1) segments_.resize(keep + 1);
 }
 
 int Waveform::KeepIndex(double t) const {

@@ -28,6 +28,7 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <memory>
 #include <vector>
 
 namespace asgard::solver {
@@ -52,6 +53,10 @@ struct SampleInfo {
 class Waveform {
  public:
   explicit Waveform(int n = 0);
+  Waveform(const Waveform& o);
+  Waveform& operator=(const Waveform& o);
+  Waveform(Waveform&&) = default;
+  Waveform& operator=(Waveform&&) = default;
 
   int variable_count() const { return n_; }
   int size() const { return static_cast<int>(times_.size()); }
@@ -85,22 +90,24 @@ class Waveform {
   int Locate(double t, Side side) const;
   double Interpolate(int i, double t, Side side, bool rate) const;
 
+  // Segment b holds rows first_rows_·2^b, from sample first_rows_·(2^b − 1).
   const double* Row(int k) const {
-    return blocks_[static_cast<size_t>(k) >> block_shift_].data() +
-           (static_cast<size_t>(k) & block_mask_) * 3 * n_;
+    const size_t q = (static_cast<size_t>(k) >> first_shift_) + 1;
+    const int b = 63 - __builtin_clzll(q);
+    const size_t off = static_cast<size_t>(k) - (((size_t{1} << b) - 1) << first_shift_);
+    return segments_[static_cast<size_t>(b)].get() + off * 3 * n_;
   }
 
   int n_;
   std::vector<double> times_;
-  // Sample k's row x | f | bubble (3n values) is row k mod 2^block_shift_
-  // of block k >> block_shift_.  Blocks of fixed size (about 32 KiB) are
-  // never moved: appending copies only the new row, and a long run grows by
-  // one block at a time instead of reallocating (and first touching) all
-  // its samples again at each doubling — which had cost the double
-  // pendulum's run 30% in page faults.
-  std::vector<std::vector<double>> blocks_;
-  int block_shift_ = 0;
-  size_t block_mask_ = 0;
+  // Sample k's row x | f | bubble (3n values) lives in a segment that never
+  // moves; each segment doubles the last (the first about 4 KiB), and is
+  // left uninitialized, so appending copies only the new row and touches
+  // only the memory the samples fill.  Contiguous vectors grown by doubling
+  // had reallocated, copied and first-touched every sample again at each
+  // doubling — 30% of the double pendulum's run in page faults.
+  std::vector<std::unique_ptr<double[]>> segments_;
+  int first_shift_ = 0;
   std::vector<SampleInfo> info_;
   // The segment the last lookup found: lookups come in runs close in time
   // (collision queries, readers' steps), so most need no binary search.
