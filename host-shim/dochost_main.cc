@@ -31,7 +31,7 @@
 #include "host-shim/html.h"
 #include "host-shim/layout.h"
 #include "host-shim/serve_host.h"
-#include "serve/launch.h"
+#include "web/server/launch.h"
 
 namespace asgard::host {
 namespace {
@@ -552,7 +552,7 @@ int RunVerb(Host& h) {
   return Usage("unknown verb '" + o.verb + "'");
 }
 
-// dochost serve: the editor server (serve/launch.h).
+// dochost serve: the editor server (web/server/launch.h).
 int ServeCommand(const std::vector<std::string>& args) {
   std::string file, error;
   serve::LaunchOptions lo;

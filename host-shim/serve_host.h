@@ -2,7 +2,7 @@
 // "editor traffic for an animation goes to the same asgard-core slave that
 // draws its renditions, so the document and its editors are one state").
 //
-//   browser ══ WebSocket /ws?a=N ══▶ Hub (serve/) ── NodeChannel ──┐
+//   browser ══ WebSocket /ws?a=N ══▶ Hub (web/server/) ── NodeChannel ──┐
 //   browser ── GET /frame?a=N&t=T ─▶ Hub worker ── HostDocument::Frame ─┤
 //                                                                      ▼
 //                        HostDocument item ── medium node (ABI 1.1 node_rpc, renditions)
@@ -20,8 +20,8 @@
 #include <string>
 
 #include "host-shim/host_document.h"
-#include "serve/launch.h"
-#include "serve/slave_link.h"
+#include "web/server/launch.h"
+#include "web/server/slave_link.h"
 
 namespace asgard::host {
 

@@ -15,7 +15,7 @@ packages=(
   # core
   tcl8.6-dev libeigen3-dev libsuitesparse-dev libqhull-dev libccd-dev
   nlohmann-json3-dev
-  # the editor server (serve/): Boost.Beast and Asio, header-only; see docs/editor-server.md
+  # the editor server (web/server/): Boost.Beast and Asio, header-only; see docs/editor-server.md
   libboost-dev
   # rendering and exports
   libcairo2-dev libpango1.0-dev libosmesa6-dev libpng-dev libxml2-dev ffmpeg

@@ -1,4 +1,4 @@
-// asgard-core methods for the browser editor (serve/, seed chapter 4): what a
+// asgard-core methods for the browser editor (web/server/, seed chapter 4): what a
 // graphical viewer and a language viewer need from the session that owns an
 // animation, without drawing anything in the slave.
 //

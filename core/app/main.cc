@@ -28,7 +28,7 @@
 #include "core/lang/lang.h"
 #include "core/pipeline/pipeline.h"
 #include "core/session/session.h"
-#include "serve/launch.h"
+#include "web/server/launch.h"
 
 namespace {
 
@@ -513,7 +513,7 @@ int Main(int argc, char** argv) {
   if (cmd == "edit") return Edit(args);
   if (cmd == "render") return asgard::app::RenderCommand(args);
   if (cmd == "export") return asgard::app::ExportCommand(args);
-  if (cmd == "studio") {  // the editor in the browser (serve/launch.h)
+  if (cmd == "studio") {  // the editor in the browser (web/server/launch.h)
     std::string file, error;
     asgard::serve::LaunchOptions lo;
     if (!asgard::serve::ParseLaunchArgs(args, &file, &lo, &error))

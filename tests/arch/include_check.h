@@ -40,7 +40,7 @@ struct Violation {
 
 // The folders of the product code that the check reads.
 inline const std::vector<std::string> kProductFolders = {"core", "formats", "host-shim",
-                                                         "medium-plugin"};
+                                                         "medium-plugin", "web/server"};
 
 // Scans every .h/.cc/.c file under root/<folder> for each product folder that
 // exists.  A file outside every module is a violation too (the table must

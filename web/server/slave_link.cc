@@ -1,4 +1,4 @@
-#include "serve/slave_link.h"
+#include "web/server/slave_link.h"
 
 #include <signal.h>
 #include <spawn.h>

@@ -1,4 +1,4 @@
-#include "serve/launch.h"
+#include "web/server/launch.h"
 
 #include <spawn.h>
 #include <sys/wait.h>
@@ -12,7 +12,7 @@
 
 #include "formats/document/document.h"
 #include "formats/document/file.h"
-#include "serve/server.h"
+#include "web/server/server.h"
 
 extern char** environ;
 

@@ -1,4 +1,4 @@
-#include "serve/movie.h"
+#include "web/server/movie.h"
 
 #include <fcntl.h>
 #include <spawn.h>

@@ -1,7 +1,7 @@
 // The editor server (see server.h): Boost.Beast over Boost.Asio, one I/O
 // thread; slave calls happen on one worker thread per animation and their
 // results are posted back to the I/O thread, which alone touches sockets.
-#include "serve/server.h"
+#include "web/server/server.h"
 
 // Boost 1.74's asio uses std::exchange without including <utility> (C++20).
 #include <utility>
@@ -29,8 +29,8 @@
 #include <sstream>
 #include <thread>
 
-#include "serve/movie.h"
-#include "serve/slave_link.h"
+#include "web/server/movie.h"
+#include "web/server/slave_link.h"
 
 namespace asgard::serve {
 

@@ -8,7 +8,7 @@
 #include <string>
 #include <vector>
 
-#include "serve/server.h"
+#include "web/server/server.h"
 
 namespace asgard::serve {
 

@@ -25,7 +25,7 @@
 #include <string>
 #include <vector>
 
-#include "serve/slave_link.h"
+#include "web/server/slave_link.h"
 
 namespace asgard::serve {
 

@@ -1,8 +1,8 @@
-// The editor server's admission rules (serve/server.h): loopback peers only,
+// The editor server's admission rules (web/server/server.h): loopback peers only,
 // WebSocket upgrades only from our own origin and Host.
 #include <gtest/gtest.h>
 
-#include "serve/server.h"
+#include "web/server/server.h"
 
 namespace asgard::serve {
 namespace {
