@@ -116,6 +116,7 @@ struct Component::Mode {
   // Built on first use (PrepareJacobian): everything below but `out` of f.
   expr::Tape fj_tape;           // the same followed by the Jacobian entries
   std::vector<int> jrow, jcol;  // local (row, col) of each Jacobian entry
+  std::vector<int> jdiag;       // the entries on the diagonal (DenseError)
   // Differenced instead (EvalJacobianNumerically): the entries of column c
   // are by_col[col_begin[c] .. col_begin[c+1]).
   bool numeric_jacobian = false;
@@ -471,6 +472,8 @@ void Component::PrepareJacobian(Mode& m) {
   }
   m.mrow.insert(m.mrow.end(), m.jrow.begin(), m.jrow.end());
   m.mcol.insert(m.mcol.end(), m.jcol.begin(), m.jcol.end());
+  for (size_t e = 0; e < m.jrow.size(); ++e)
+    if (m.jrow[e] == m.jcol[e]) m.jdiag.push_back(static_cast<int>(e));
   m.jvals.assign(m.jrow.size(), 0.0);
   m.mvals.assign(m.mrow.size(), 0.0);
   m.out.assign(all.size(), 0.0);
@@ -798,16 +801,14 @@ double Component::DenseError(const Mode& m, double h) {
   const size_t n = vars_.size();
   const double* x = wave_.x(k);
   const double* f = wave_.f(k);
-  const double th = kEsdirk32.c[kDenseCheckStage];
-  const double h00 = (2 * th - 3) * th * th + 1, h10 = ((th - 2) * th + 1) * th;
-  const double h01 = (3 - 2 * th) * th * th, h11 = (th - 1) * th * th;
+  const HermiteWeights w = HermiteAt(kEsdirk32.c[kDenseCheckStage], h);
   for (size_t j = 0; j < n; ++j) {
-    const double hermite = h00 * x[j] + h10 * h * f[j] + h01 * y_[j] + h11 * h * rate_[j];
+    const double hermite = w.h00 * x[j] + w.h10 * f[j] + w.h01 * y_[j] + w.h11 * rate_[j];
     pv_[j] = m.prescribed[j] ? 0.0 : hermite - k_[3][j];
   }
   const double a = kEsdirk32.gamma * h;
-  for (size_t e = 0; e < m.jrow.size(); ++e)
-    if (m.jrow[e] == m.jcol[e] && m.jvals[e] < 0.0) pv_[m.jrow[e]] /= 1.0 - a * m.jvals[e];
+  for (const int e : m.jdiag)
+    if (m.jvals[e] < 0.0) pv_[m.jrow[e]] /= 1.0 - a * m.jvals[e];
   return WeightedNorm(pv_.data(), x, y_.data());
 }
 

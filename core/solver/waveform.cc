@@ -86,14 +86,7 @@ int Waveform::Locate(double t, Side side) const {
   return k;
 }
 
-namespace {
-struct Hermite {
-  double h00, h10, h01, h11, hb;  // value weights (hb: the bubble θ²(1−θ)²)
-  double d00, d10, d01, d11, db;  // rate weights (already divided by h where needed)
-};
-Hermite Weights(double t0, double t1, double t) {
-  const double h = t1 - t0;
-  const double s = (t - t0) / h;
+HermiteWeights HermiteAt(double s, double h) {
   const double s2 = s * s, s3 = s2 * s;
   const double u = s * (1 - s);
   return {2 * s3 - 3 * s2 + 1,
@@ -107,14 +100,14 @@ Hermite Weights(double t0, double t1, double t) {
           3 * s2 - 2 * s,
           2 * u * (1 - 2 * s) / h};
 }
-}  // namespace
 
 double Waveform::Interpolate(int i, double t, Side side, bool rate) const {
   const int k = Locate(t, side);
   const double* at = rate ? f(k) : x(k);
   if (k + 1 >= size() || times_[k + 1] == times_[k] || t == times_[k]) return at[i];
   if (t == times_[k + 1]) return (rate ? f(k + 1) : x(k + 1))[i];
-  const Hermite w = Weights(times_[k], times_[k + 1], t);
+  const double h = times_[k + 1] - times_[k];
+  const HermiteWeights w = HermiteAt((t - times_[k]) / h, h);
   if (rate)
     return w.d00 * x(k)[i] + w.d10 * f(k)[i] + w.d01 * x(k + 1)[i] + w.d11 * f(k + 1)[i] +
            w.db * bubble(k + 1)[i];

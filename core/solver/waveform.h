@@ -35,6 +35,16 @@ namespace asgard::solver {
 
 enum class Side : uint8_t { kLeft, kRight };
 
+// The weights of a step's cubic Hermite interpolant with its bubble, at the
+// fraction s of a step of length h: value = h00·x0 + h10·f0 + h01·x1 +
+// h11·f1 + hb·b (b the bubble θ²(1−θ)² coefficient), rate likewise with the
+// d weights (already divided by h where needed).
+struct HermiteWeights {
+  double h00, h10, h01, h11, hb;
+  double d00, d10, d01, d11, db;
+};
+HermiteWeights HermiteAt(double s, double h);
+
 // What the integrator needs to continue from a sample exactly as it did the
 // first time.
 struct SampleInfo {
