@@ -268,17 +268,24 @@ struct SolverContact {
   Eigen::Vector3d point = Eigen::Vector3d::Zero();
   Eigen::Vector3d normal = Eigen::Vector3d::UnitX();
   double friction = 0.0;
-  double target = 0.0;          // least normal relative velocity after the solve
-  double normal_impulse = 0.0;  // out: accumulated
+  double target = 0.0;  // least normal relative velocity after the solve
+  // In: a guess of the solution (warm start), applied before the first
+  // sweep — the normal impulse clamped at 0, the tangential one (world,
+  // its normal part dropped) to the Coulomb disc.
+  double warm_normal = 0.0;
+  Eigen::Vector3d warm_tangent = Eigen::Vector3d::Zero();
+  // Out: the accumulated impulses.
+  double normal_impulse = 0.0;
+  Eigen::Vector3d tangent_impulse = Eigen::Vector3d::Zero();
 };
 
 // Projected Gauss–Seidel ("sequential impulses") over the contacts of an
 // island: normal impulses ≥ 0 bring each contact's normal relative velocity
 // up to its target, friction impulses stay inside the Coulomb disc
 // |P_t| ≤ μ P_n (static while inside, kinetic on its rim).  Deterministic:
-// contacts in the given order, a fixed number of sweeps or until the
-// largest impulse change is below `tolerance` (an impulse).  Returns the
-// sweeps taken.
+// contacts in the given order, from their warm start, a fixed number of
+// sweeps or until the largest impulse change is below `tolerance` (an
+// impulse).  Returns the sweeps taken.
 int SolveContacts(std::vector<BodyState>& bodies, std::vector<SolverContact>& contacts,
                   int max_sweeps, double tolerance);
 

@@ -1249,6 +1249,13 @@ void CollisionMonitor::RespondResting(const Impact& impact) {
   }
   const double hop = HopPeriod(press, std::isfinite(radius) ? radius : 1.0);
   std::vector<collide::SolverContact> contacts;
+  std::vector<std::pair<int, int>> contact_pair;  // per contact: its bodies
+  std::map<int, const Impact*> previous;          // per body: PreviousResting
+  auto previous_of = [&](int body) {
+    auto [it, fresh] = previous.try_emplace(body, nullptr);
+    if (fresh) it->second = PreviousResting(body, t);
+    return it->second;
+  };
   double scale = 0.0;
   std::vector<char> skipped(pairs.size(), 0);  // pairs with an impact to come
   for (size_t k = 0; k < pairs.size(); ++k) {
@@ -1276,7 +1283,9 @@ void CollisionMonitor::RespondResting(const Impact& impact) {
       c.friction = mu;
       const double gap = pushed ? separation_ : p.gap;
       c.target = 0.5 * pressed * hop + (separation_ - gap) / hop;
+      WarmStart(c, pc.a, pc.b, previous_of(Movable(pc.a, t) ? pc.a : pc.b), hop);
       contacts.push_back(c);
+      contact_pair.push_back({pc.a, pc.b});
     }
   }
   for (int body : members)
@@ -1286,6 +1295,11 @@ void CollisionMonitor::RespondResting(const Impact& impact) {
   collide::SolveContacts(states, contacts, kSweeps, 1e-9 * scale + 1e-300);
   Impact recorded = impact;
   recorded.resting = true;
+  recorded.hop = hop;
+  for (size_t k = 0; k < contacts.size(); ++k)
+    recorded.contacts.push_back({contact_pair[k].first, contact_pair[k].second, contacts[k].point,
+                                 contacts[k].normal, contacts[k].normal_impulse,
+                                 contacts[k].tangent_impulse});
   recorded.bodies = {impact.a, impact.b};
   for (int body : members)
     if (body != impact.a && body != impact.b) recorded.bodies.push_back(body);
@@ -1353,6 +1367,50 @@ void CollisionMonitor::RespondResting(const Impact& impact) {
     }
   }
   ApplyEdits(t);
+}
+
+const Impact* CollisionMonitor::PreviousResting(int body, double t) const {
+  // Impacts in time order: from the last one up to t back, the first that
+  // involves the body.  One at t itself means the body's velocities were
+  // solved at this instant already (an island struck again): they hold
+  // that solution, and a guess would add it a second time.  Bounded, so
+  // that a body with no recent event costs a bounded scan (an old event is
+  // too far back to start from anyway).
+  constexpr int kLookBack = 256;
+  auto it = std::upper_bound(impacts_.begin(), impacts_.end(), t,
+                             [](double time, const Impact& x) { return time < x.t; });
+  for (int k = 0; k < kLookBack && it != impacts_.begin(); ++k) {
+    --it;
+    if (Involves(*it, body)) return it->resting && it->t < t ? &*it : nullptr;
+  }
+  return nullptr;
+}
+
+// A resting event's impulses are its hop's share of the holding force, so a
+// guess from the event before is scaled by the ratio of the hops.  It is
+// taken only from an event at most two hops back (the island's previous
+// one, not a configuration it has left), for the same pair at the same
+// point (within the contact margin's share of the radius) and normal.
+void CollisionMonitor::WarmStart(collide::SolverContact& c, int a, int b, const Impact* previous,
+                                 double hop) const {
+  if (previous == nullptr || !(previous->hop > 0) ||
+      respond_time_ - previous->t > 2.0 * std::max(hop, previous->hop))
+    return;
+  const double near = kMarginRelative * std::min(bodies_[a].radius, bodies_[b].radius);
+  const Impact::Contact* best = nullptr;
+  double best_distance = near;
+  for (const Impact::Contact& p : previous->contacts) {
+    if (p.a != a || p.b != b || p.normal.dot(c.normal) < 0.99) continue;
+    const double d = (p.point - c.point).norm();
+    if (d <= best_distance) {
+      best_distance = d;
+      best = &p;
+    }
+  }
+  if (best == nullptr) return;
+  const double ratio = hop / previous->hop;
+  c.warm_normal = ratio * best->normal_impulse;
+  c.warm_tangent = ratio * best->tangent_impulse;
 }
 
 // Resting contact: against an immovable partner, an impact after which the

@@ -86,6 +86,18 @@ struct Impact {
   // contact landing.
   double hold = 0.0;
   std::vector<std::pair<int, int>> held;
+  // Resting events: the hop they were solved for, and each solved contact's
+  // impulses — the next resting event of the island starts from them
+  // (SolveContacts' warm start).
+  struct Contact {
+    int a = -1, b = -1;  // body indices, a < b
+    Eigen::Vector3d point = Eigen::Vector3d::Zero();
+    Eigen::Vector3d normal = Eigen::Vector3d::UnitX();
+    double normal_impulse = 0.0;
+    Eigen::Vector3d tangent_impulse = Eigen::Vector3d::Zero();
+  };
+  double hop = 0.0;
+  std::vector<Contact> contacts;
 };
 
 class CollisionMonitor {
@@ -154,6 +166,11 @@ class CollisionMonitor {
   // The hop period of resting contact (see collisions.cc).
   double HopPeriod(double accel, double radius) const;
   void RespondResting(const Impact& impact);
+  // The latest event before t that moved `body`, when it was a resting one.
+  const Impact* PreviousResting(int body, double t) const;
+  // Sets c's warm start from the matching contact of the pair (a, b) in
+  // `previous` (same pair, point and normal), scaled to the hop.
+  void WarmStart(collide::SolverContact& c, int a, int b, const Impact* previous, double hop) const;
   // WriteVelocities and Sleep queue their changes in edits_ (values read
   // now, before any component is cut back to t), applied at once by
   // ApplyEdits at the end of the response; Wake applies its own at once.

@@ -115,6 +115,47 @@ TEST(SolveContacts, ABoxLandingFlatStopsWithoutSpinAndTheImpulsesAddUpToItsMomen
   EXPECT_NEAR(total, 2.0, 1e-10);
 }
 
+// A box landing flat on its four corners while sliding and spinning: the
+// cold solve's impulses, given back as the warm start of the same problem,
+// are its fixed point — one sweep finds nothing to change and the bodies
+// end where the cold solve left them.
+TEST(SolveContacts, StartedFromItsSolutionItStopsAfterOneSweepWithTheSameResult) {
+  const Eigen::Vector3d v0(0.3, -2, 0.1);
+  std::vector<BodyState> cold = {CubeState(v0)};
+  cold[0].w = {0.5, 0.0, -0.2};
+  auto contacts = Corners(0.5, 0.0);
+  const int cold_sweeps = SolveContacts(cold, contacts, 2000, 1e-13);
+  EXPECT_GT(cold_sweeps, 1);
+  std::vector<BodyState> warm = {CubeState(v0)};
+  warm[0].w = {0.5, 0.0, -0.2};
+  auto again = Corners(0.5, 0.0);
+  for (size_t i = 0; i < again.size(); ++i) {
+    again[i].warm_normal = contacts[i].normal_impulse;
+    again[i].warm_tangent = contacts[i].tangent_impulse;
+  }
+  EXPECT_EQ(SolveContacts(warm, again, 2000, 1e-12), 1);
+  // The cold solve stopped within 1e-13 per impulse; the velocities differ
+  // by at most that many impulses over the unit mass and 1/6 inertia.
+  EXPECT_NEAR((warm[0].v - cold[0].v).norm(), 0.0, 1e-11);
+  EXPECT_NEAR((warm[0].w - cold[0].w).norm(), 0.0, 1e-10);
+  for (size_t i = 0; i < again.size(); ++i)
+    EXPECT_NEAR(again[i].normal_impulse, contacts[i].normal_impulse, 1e-12);
+}
+
+// A guess that is too large is given back: the accumulated impulse is
+// clamped, not the increment, so the warm start changes the path only.
+TEST(SolveContacts, AnOversizedWarmStartStillEndsAtTheSolution) {
+  std::vector<BodyState> bodies = {CubeState({0, -2, 0})};
+  auto contacts = Corners(0.0, 0.0);
+  for (auto& c : contacts) c.warm_normal = 3.0;  // six times the share of each corner
+  SolveContacts(bodies, contacts, 2000, 1e-14);
+  EXPECT_NEAR(bodies[0].v.norm(), 0.0, 1e-10);
+  EXPECT_NEAR(bodies[0].w.norm(), 0.0, 1e-10);
+  double total = 0;
+  for (const auto& c : contacts) total += c.normal_impulse;
+  EXPECT_NEAR(total, 2.0, 1e-10);
+}
+
 TEST(SolveContacts, FrictionSticksInsideTheConeAndStaysWithinItWhenSliding) {
   // Landing at −1 along y while sliding at 0.3 along x: the normal impulse
   // is about 1 (m Δv_n), so μ = 0.5 can take away up to 0.5 of the sliding
