@@ -52,6 +52,9 @@ namespace {
 
 struct Row {
   Eigen::Vector3d ra, rb, n, t1, t2;
+  // Change of each body's angular velocity per unit impulse along n, t1 and
+  // t2 (I⁻¹ (r × d)), so that a sweep's pushes are sums of vectors.
+  Eigen::Vector3d wa_n, wa_t1, wa_t2, wb_n, wb_t1, wb_t2;
   double inv_kn = 0.0;
   Eigen::Matrix2d inv_kt = Eigen::Matrix2d::Zero();
   double kt_max = 0.0;  // largest eigenvalue of K_t
@@ -66,9 +69,21 @@ Eigen::Vector3d VelocityAt(const BodyState& s, const Eigen::Vector3d& r) {
   return s.v + s.w.cross(r);
 }
 
-void Push(BodyState& s, const Eigen::Vector3d& r, const Eigen::Vector3d& p, double sign) {
-  s.v += sign * s.inv_mass * p;
-  s.w += sign * (s.inv_inertia * r.cross(p));
+// An impulse of x along the row's normal, or (x, y) along its tangents,
+// from a to b.
+void PushNormal(BodyState& a, BodyState& b, const Row& row, double x) {
+  a.v -= (a.inv_mass * x) * row.n;
+  a.w -= x * row.wa_n;
+  b.v += (b.inv_mass * x) * row.n;
+  b.w += x * row.wb_n;
+}
+
+void PushTangent(BodyState& a, BodyState& b, const Row& row, double x, double y) {
+  const Eigen::Vector3d p = x * row.t1 + y * row.t2;
+  a.v -= a.inv_mass * p;
+  a.w -= x * row.wa_t1 + y * row.wa_t2;
+  b.v += b.inv_mass * p;
+  b.w += x * row.wb_t1 + y * row.wb_t2;
 }
 
 // Change of the relative velocity at the contact per unit impulse along x,
@@ -89,13 +104,19 @@ int SolveContacts(std::vector<BodyState>& bodies, std::vector<SolverContact>& co
   for (size_t i = 0; i < contacts.size(); ++i) {
     SolverContact& c = contacts[i];
     Row& row = rows[i];
-    const BodyState& a = Get(bodies, c.a, world);
-    const BodyState& b = Get(bodies, c.b, world);
+    BodyState& a = Get(bodies, c.a, world);
+    BodyState& b = Get(bodies, c.b, world);
     row.n = c.normal.normalized();
     row.t1 = row.n.unitOrthogonal();
     row.t2 = row.n.cross(row.t1);
     row.ra = c.point - a.com;
     row.rb = c.point - b.com;
+    row.wa_n = a.inv_inertia * row.ra.cross(row.n);
+    row.wa_t1 = a.inv_inertia * row.ra.cross(row.t1);
+    row.wa_t2 = a.inv_inertia * row.ra.cross(row.t2);
+    row.wb_n = b.inv_inertia * row.rb.cross(row.n);
+    row.wb_t1 = b.inv_inertia * row.rb.cross(row.t1);
+    row.wb_t2 = b.inv_inertia * row.rb.cross(row.t2);
     const double kn = Coupling(a, b, row, row.n, row.n);
     row.inv_kn = kn > 0.0 ? 1.0 / kn : 0.0;
     Eigen::Matrix2d kt;
@@ -114,12 +135,9 @@ int SolveContacts(std::vector<BodyState>& bodies, std::vector<SolverContact>& co
       const double limit = c.friction * c.normal_impulse, length = row.lambda_t.norm();
       if (length > limit) row.lambda_t *= length > 0.0 ? limit / length : 0.0;
     }
-    const Eigen::Vector3d p =
-        c.normal_impulse * row.n + row.lambda_t.x() * row.t1 + row.lambda_t.y() * row.t2;
-    if (p.squaredNorm() > 0.0) {
-      Push(Get(bodies, c.a, world), row.ra, p, -1.0);
-      Push(Get(bodies, c.b, world), row.rb, p, +1.0);
-    }
+    if (c.normal_impulse > 0.0) PushNormal(a, b, row, c.normal_impulse);
+    if (row.lambda_t.squaredNorm() > 0.0)
+      PushTangent(a, b, row, row.lambda_t.x(), row.lambda_t.y());
   }
   int sweep = 0;
   while (sweep < max_sweeps) {
@@ -134,9 +152,7 @@ int SolveContacts(std::vector<BodyState>& bodies, std::vector<SolverContact>& co
       Eigen::Vector3d u = VelocityAt(b, row.rb) - VelocityAt(a, row.ra);
       const double old_n = c.normal_impulse;
       c.normal_impulse = std::max(0.0, old_n + (c.target - u.dot(row.n)) * row.inv_kn);
-      const Eigen::Vector3d pn = (c.normal_impulse - old_n) * row.n;
-      Push(a, row.ra, pn, -1.0);
-      Push(b, row.rb, pn, +1.0);
+      PushNormal(a, b, row, c.normal_impulse - old_n);
       change = std::max(change, std::abs(c.normal_impulse - old_n));
       if (c.friction > 0.0 && row.inv_kt(0, 0) > 0.0) {
         u = VelocityAt(b, row.rb) - VelocityAt(a, row.ra);
@@ -152,9 +168,7 @@ int SolveContacts(std::vector<BodyState>& bodies, std::vector<SolverContact>& co
         }
         row.lambda_t = next;
         const Eigen::Vector2d d = next - old_t;
-        const Eigen::Vector3d pt = d.x() * row.t1 + d.y() * row.t2;
-        Push(a, row.ra, pt, -1.0);
-        Push(b, row.rb, pt, +1.0);
+        PushTangent(a, b, row, d.x(), d.y());
         change = std::max(change, d.norm());
       }
     }
