@@ -1184,17 +1184,28 @@ void CollisionMonitor::RespondResting(const Impact& impact) {
   add(impact.b);
   std::vector<PairContact> pairs;
   std::set<std::pair<int, int>> seen;
+  // Every body's centre at t, read once: the island's search below looks at
+  // each body once per member.  (Waking a body releases its holds at t and
+  // moves nothing there.)
+  std::vector<Eigen::Vector3d> centre(bodies_.size());
+  std::vector<char> centre_known(bodies_.size(), 0);
+  auto centre_of = [&](int body) -> const Eigen::Vector3d& {
+    if (!centre_known[static_cast<size_t>(body)]) {
+      centre[static_cast<size_t>(body)] = PoseAt(body, t).p;
+      centre_known[static_cast<size_t>(body)] = 1;
+    }
+    return centre[static_cast<size_t>(body)];
+  };
   for (size_t q = 0; q < members.size(); ++q) {
     const int x = members[q];
-    const Eigen::Vector3d px = PoseAt(x, t).p;
+    const Eigen::Vector3d px = centre_of(x);
     for (size_t y = 0; y < bodies_.size(); ++y) {
       const int other = static_cast<int>(y);
       if (other == x || !bodies_[y].collidable || !Tested(x, other)) continue;
       const auto key = std::minmax(x, other);
       if (seen.count(key)) continue;
       const double margin = ContactMargin(x, other);
-      if ((PoseAt(other, t).p - px).norm() > bodies_[x].radius + bodies_[y].radius + margin)
-        continue;
+      if ((centre_of(other) - px).norm() > bodies_[x].radius + bodies_[y].radius + margin) continue;
       PairContact pc = ContactsAt(key.first, key.second, t, margin);
       if (pc.points.empty()) continue;
       seen.insert(key);
