@@ -220,6 +220,8 @@ CollisionMonitor::CollisionMonitor(Simulation& sim, double separation)
   bodies_.resize(sys_.bodies.size());
   bodies_of_component_.resize(sim.component_count());
   version_.assign(sys_.bodies.size(), 0);
+  latest_event_.assign(sys_.bodies.size(), -kInf);
+  latest_stale_.assign(sys_.bodies.size(), 0);
   double min_radius = kInf;
   for (size_t b = 0; b < sys_.bodies.size(); ++b) {
     const physics::BodyModel& m = sys_.bodies[b];
@@ -314,6 +316,42 @@ void CollisionMonitor::AdoptImpacts(const std::vector<Impact>& impacts) {
   // Stable: events of one pair at one instant (a jam, a resting island) keep
   // the order they happened in, which SlowEvents reads.
   std::stable_sort(impacts_.begin(), impacts_.end(), ImpactOrder);
+  for (const Impact& x : impacts) NoteEvent(x);
+}
+
+void CollisionMonitor::NoteEvent(const Impact& impact) {
+  auto note = [&](int body) {
+    if (body < 0 || static_cast<size_t>(body) >= latest_event_.size()) return;
+    auto& t = latest_event_[static_cast<size_t>(body)];
+    t = std::max(t, impact.t);
+  };
+  note(impact.a);
+  note(impact.b);
+  for (int body : impact.bodies) note(body);
+}
+
+void CollisionMonitor::ForgetEvent(const Impact& impact) {
+  auto forget = [&](int body) {
+    if (body >= 0 && static_cast<size_t>(body) < latest_stale_.size())
+      latest_stale_[static_cast<size_t>(body)] = 1;
+  };
+  forget(impact.a);
+  forget(impact.b);
+  for (int body : impact.bodies) forget(body);
+}
+
+double CollisionMonitor::LatestEvent(int body) const {
+  const auto b = static_cast<size_t>(body);
+  if (latest_stale_[b]) {
+    latest_event_[b] = -kInf;
+    for (auto it = impacts_.rbegin(); it != impacts_.rend(); ++it)
+      if (Involves(*it, body)) {
+        latest_event_[b] = it->t;
+        break;
+      }
+    latest_stale_[b] = 0;
+  }
+  return latest_event_[b];
 }
 
 bool CollisionMonitor::Tested(int a, int b) const {
@@ -669,7 +707,15 @@ double CollisionMonitor::HeldUntil(int a, int b, double from) const {
   auto moving = [&](const Impact& x, int body) {
     return sys_.bodies[body].first_var >= 0 && Involves(x, body);
   };
-  for (auto it = impacts_.rbegin(); it != impacts_.rend() && it->t >= from; ++it) {
+  // The latest event of either moving body is at the later of their latest
+  // event times; among the events at that time, the last in order.
+  const double ta = sys_.bodies[a].first_var >= 0 ? LatestEvent(a) : -kInf;
+  const double tb = sys_.bodies[b].first_var >= 0 ? LatestEvent(b) : -kInf;
+  const double latest = std::max(ta, tb);
+  if (!(latest >= from)) return -kInf;
+  const auto after = std::upper_bound(impacts_.begin(), impacts_.end(), latest,
+                                      [](double t, const Impact& x) { return t < x.t; });
+  for (auto it = std::make_reverse_iterator(after); it != impacts_.rend() && it->t >= from; ++it) {
     if (!moving(*it, a) && !moving(*it, b)) continue;
     // The latest event of either moving body: only a resting one holds.
     if (!it->resting || it->held.empty()) return -kInf;
@@ -1134,6 +1180,7 @@ void CollisionMonitor::Respond(const Impact& impact) {
   ++counters_.impacts;
   auto pos = std::upper_bound(impacts_.begin(), impacts_.end(), recorded, ImpactOrder);
   impacts_.insert(pos, recorded);
+  NoteEvent(recorded);
   for (int s = 0; s < 2; ++s) {
     if (!movable[s]) continue;
     const physics::BodyModel& m = sys_.bodies[ids[s]];
@@ -1363,6 +1410,7 @@ void CollisionMonitor::RespondResting(const Impact& impact) {
   counters_.contacts_solved += static_cast<long>(contacts.size());
   auto pos = std::upper_bound(impacts_.begin(), impacts_.end(), recorded, ImpactOrder);
   impacts_.insert(pos, recorded);
+  NoteEvent(recorded);
   for (int body : members) {
     const physics::BodyModel& m = sys_.bodies[body];
     const auto it = shift.find(body);
@@ -1485,6 +1533,7 @@ void CollisionMonitor::AfterTruncate() {
         if (Involves(impacts_[i], b)) {
           const Impact imp = std::move(impacts_[i]);
           impacts_.erase(impacts_.begin() + static_cast<long>(i));
+          ForgetEvent(imp);
           ++counters_.invalidated_impacts;
           // Both bodies' jumps at the impact are void; the partner's data
           // after it must be recomputed.
