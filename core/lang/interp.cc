@@ -201,8 +201,17 @@ size_t StringBytes(GuardState& guard, Tcl_Obj* o, size_t cap, int depth = 0) {
   return bytes;
 }
 
+// A value's text with its length: Tcl keeps the bytes a script gave it, a
+// NUL among them, so the text does not end at the first NUL (a regsub
+// spec "\0&&&…" read up to its NUL hid every & from the bound below).
+std::string_view Text(Tcl_Obj* o) {
+  int len = 0;
+  const char* s = Tcl_GetStringFromObj(o, &len);
+  return {s, static_cast<size_t>(len)};
+}
+
 std::string_view CommandName(Tcl_Obj* word) {
-  std::string_view name = Tcl_GetString(word);
+  std::string_view name = Text(word);
   if (name.substr(0, 2) == "::") name.remove_prefix(2);
   return name;
 }
@@ -219,7 +228,7 @@ size_t ResultBound(GuardState& guard, int objc, Tcl_Obj* const objv[]) {
   }
   if ((name == "string" || name == "tcl::string::map") && objc >= 3) {
     const bool sub = name == "string";
-    if (sub && std::string_view(Tcl_GetString(objv[1])) != "map") return 0;
+    if (sub && Text(objv[1]) != "map") return 0;
     const int map = objc - 2, input = objc - 1;
     int n = 0;
     Tcl_Obj** pairs = nullptr;
@@ -236,11 +245,11 @@ size_t ResultBound(GuardState& guard, int objc, Tcl_Obj* const objv[]) {
     // or \N the whole input at most.
     int i = 1;
     while (i < objc && Tcl_GetString(objv[i])[0] == '-') {
-      if (std::string_view(Tcl_GetString(objv[i++])) == "--") break;
+      if (Text(objv[i++]) == "--") break;
     }
     const int input = i + 1;
     if (input + 1 >= objc) return 0;
-    const std::string_view spec = Tcl_GetString(objv[input + 1]);
+    const std::string_view spec = Text(objv[input + 1]);
     size_t refs = 0;
     for (size_t k = 0; k < spec.size(); ++k)
       if (spec[k] == '&' ||
@@ -265,8 +274,8 @@ size_t ElementBound(int objc, Tcl_Obj* const objv[]) {
     // The exact count: one more than the separators (default: white
     // space), or every character with an empty separator list.
     std::vector<Tcl_UniChar> seps;
-    const char* chars = objc == 3 ? Tcl_GetString(objv[2]) : " \t\n\r";
-    for (const char* p = chars; *p != '\0';) {
+    const std::string_view chars = objc == 3 ? Text(objv[2]) : std::string_view(" \t\n\r");
+    for (const char* p = chars.data(); p < chars.data() + chars.size();) {
       Tcl_UniChar c = 0;
       p += Tcl_UtfToUniChar(p, &c);
       seps.push_back(c);
@@ -286,7 +295,7 @@ size_t ElementBound(int objc, Tcl_Obj* const objv[]) {
     bool all = false, inline_ = false;
     int i = 1;
     for (; i < objc && Tcl_GetString(objv[i])[0] == '-'; ++i) {
-      const std::string_view sw = Tcl_GetString(objv[i]);
+      const std::string_view sw = Text(objv[i]);
       if (sw == "--") {
         ++i;
         break;
@@ -296,7 +305,7 @@ size_t ElementBound(int objc, Tcl_Obj* const objv[]) {
       if (sw == "-start") ++i;
     }
     if (!all || !inline_ || i + 1 >= objc) return 0;
-    const std::string_view exp = Tcl_GetString(objv[i]);
+    const std::string_view exp = Text(objv[i]);
     int len = 0;
     Tcl_GetStringFromObj(objv[i + 1], &len);
     const size_t groups = 1 + static_cast<size_t>(std::count(exp.begin(), exp.end(), '('));
@@ -331,14 +340,12 @@ std::string MegaBytes(size_t bytes) { return std::to_string(bytes >> 20) + " MB"
 // True if a `format` / `binary format` spec asks for a field wider than the
 // value limit (digit runs in the spec, or `*` with a huge argument).
 bool HugeFormat(int objc, Tcl_Obj* const objv[]) {
-  std::string_view name = Tcl_GetString(objv[0]);
-  if (name.substr(0, 2) == "::") name.remove_prefix(2);
+  const std::string_view name = CommandName(objv[0]);
   int spec = -1;
   if (name == "format" && objc >= 2) spec = 1;
-  if (name == "binary" && objc >= 3 && std::string_view(Tcl_GetString(objv[1])) == "format")
-    spec = 2;
+  if (name == "binary" && objc >= 3 && Text(objv[1]) == "format") spec = 2;
   if (spec < 0) return false;
-  std::string_view f = Tcl_GetString(objv[spec]);
+  const std::string_view f = Text(objv[spec]);
   size_t run = 0;
   for (char c : f) {
     if (c >= '0' && c <= '9') {

@@ -125,6 +125,23 @@ std::vector<BadInput> Catalogue() {
       {"RegsubBlowUp",
        "set s [string repeat a 1000000]\nregsub -all a $s [string repeat & 300] r\n", 2, 0,
        "the result of \"regsub\" could reach", kOtherLimit},
+      // Found by fuzz_scene: a NUL in the substitution spec ended the text
+      // the bound read, which then saw no & (606 MB made, 3.4 s, exit 0).
+      {"RegsubBlowUpBehindANul",
+       std::string("set s [string repeat a 1000000]\nregsub -all a $s ") + '\0' +
+           "[string repeat & 300] r\n",
+       2, 0, "the result of \"regsub\" could reach", kOtherLimit},
+      // The same class in the other bounds that read a value's text: a NUL
+      // before a format width, regexp groups, split separators.
+      {"HugeFormatWidthBehindANul", std::string("set s [format \"") + '\0' + "%900000000s\" x]\n",
+       1, 0, "field width is above the scene limit", kOtherLimit},
+      {"RegexpGroupsBehindANul",
+       std::string("set s [string repeat x 2000000]\nset m [regexp -all -inline -- \"") + '\0' +
+           "?(.)(.)\" $s]\n",
+       2, 8, "the result of \"regexp\" could have 6000003 elements", kOtherLimit},
+      {"SplitSeparatorsBehindANul",
+       std::string("set s [string repeat \"x,\" 8000000]\nset l [split $s \"") + '\0' + ",\"]\n", 2,
+       8, "the result of \"split\" could have 8000001 elements", kOtherLimit},
       {"NestedListsWhoseStringWouldBeHuge",
        "set l [lrepeat 4000 [lrepeat 4000 [string repeat x 1000]]]\nstring length $l\n", 1, 0,
        "lrepeat: the result would come to 16048012000 bytes as text, above the scene limit of "
