@@ -209,13 +209,12 @@ void RunContact(const Config& cfg) {
   // for kGrowthSpan seconds, 10 → 100 (quick) → 1000 (full mode only).  The
   // report plots the Asgard rows of the balls scenes with this t1.
   constexpr double kGrowthSpan = 10.0;
-  std::vector<ContactScene> scenes = {Pile(10, 5.0, 14), BallsInBox(10, kGrowthSpan, 14),
+  std::vector<ContactScene> scenes = {Pile(10, 5.0, 14), Pile(30, 5.0, 14), Pile(100, 5.0, 14),
+                                      BallsInBox(10, kGrowthSpan, 14),
                                       BallsInBox(100, kGrowthSpan, 14)};
   if (!cfg.quick) {
     scenes.push_back(BallsInBox(1000, kGrowthSpan, 14));
     scenes.push_back(BallsInBox(100, 60.0, 14));
-    scenes.push_back(Pile(30, 5.0, 14));
-    scenes.push_back(Pile(100, 5.0, 14));
   }
   for (const ContactScene& s : scenes) {
     auto row = [&](const std::string& code, const ContactResult& r) {

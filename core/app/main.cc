@@ -248,7 +248,9 @@ void PrintStats(const asgard::pipeline::Run& run) {
               << c.broad_phase_pairs << ", narrow-phase queries " << c.narrow_phase_queries
               << ", distance queries " << c.distance_queries << ", impacts "
               << run.collisions->impacts().size() << " (applied " << c.impacts << ", undone "
-              << c.invalidated_impacts << ")\n";
+              << c.invalidated_impacts << "; island solves " << c.resting_events << " of "
+              << c.contacts_solved << " contacts, landings answered in them " << c.impacts_absorbed
+              << ", sleeps " << c.sleeps << ", wakes " << c.wakes << ")\n";
     for (const auto& imp : run.collisions->impacts())
       std::cout << "  t=" << imp.t << " " << eq.bodies[imp.a].name << " - " << eq.bodies[imp.b].name
                 << " impulse " << imp.impulse << "\n";
