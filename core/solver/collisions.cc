@@ -1106,6 +1106,12 @@ double CollisionMonitor::SlowSpeed(int a, int b, double t,
   return std::max(2.0 * acc_rel.norm() * hop, 1e-6 * radius / own_hop);
 }
 
+// A pair's restitution: the product of its bodies', and none in a jam
+// (impacts that keep coming at one instant are made perfectly inelastic).
+double CollisionMonitor::Restitution(int a, int b) const {
+  return same_instant_ > kJamEvents ? 0.0 : sys_.bodies[a].restitution * sys_.bodies[b].restitution;
+}
+
 void CollisionMonitor::Respond(const Impact& impact) {
   const double t = impact.t;
   // Every change a response makes (wakes, jumps, holds, sleep, here and in
@@ -1155,9 +1161,7 @@ void CollisionMonitor::Respond(const Impact& impact) {
     movable[s] = Movable(ids[s], t);
     state[s] = StateAt(ids[s], t, movable[s]);
   }
-  const double e = same_instant_ > kJamEvents
-                       ? 0.0
-                       : sys_.bodies[impact.a].restitution * sys_.bodies[impact.b].restitution;
+  const double e = Restitution(impact.a, impact.b);
   const double mu = std::sqrt(sys_.bodies[impact.a].friction * sys_.bodies[impact.b].friction);
   Impact recorded = impact;
   recorded.bodies = {impact.a, impact.b};
@@ -1361,9 +1365,7 @@ void CollisionMonitor::RespondResting(const Impact& impact) {
             skipped[k] = 1;
             continue;
           }
-          const double e = same_instant_ > kJamEvents
-                               ? 0.0
-                               : sys_.bodies[pc.a].restitution * sys_.bodies[pc.b].restitution;
+          const double e = Restitution(pc.a, pc.b);
           // Its restitution as an impact would have it, when it would land
           // faster than resting contact does (SlowSpeed, as Respond judges a
           // landing); slower, it is caught, as Respond would rest it.

@@ -59,7 +59,7 @@ struct CollisionCounters {
   long invalidated_impacts = 0;   // impacts undone by an earlier truncation
   long resting_events = 0;        // island solves of slow contacts (included in impacts)
   long contacts_solved = 0;       // contact points in those solves
-  long impacts_absorbed = 0;      // landings answered in those solves (AbsorbGap)
+  long impacts_absorbed = 0;      // points landing within the hop, solved there (AbsorbGap)
   long overlaps_resolved = 0;     // overlapping pairs pushed apart
   long sleeps = 0;                // bodies put to sleep
   long wakes = 0;                 // sleeping bodies woken
@@ -172,8 +172,11 @@ class CollisionMonitor {
   double ContactMargin(int a, int b) const;
   // The hop period of resting contact (see collisions.cc).
   double HopPeriod(double accel, double radius) const;
+  // The landing speed below which a pair's touch rests instead of bouncing,
+  // and (optional) the pair's hop period.
   double SlowSpeed(int a, int b, double t, const std::vector<collide::ContactPoint>& points,
                    double* hop = nullptr) const;
+  double Restitution(int a, int b) const;
   // How near touching an island's point lands to be answered at its event.
   double AbsorbGap(int a, int b) const;
   void RespondResting(const Impact& impact);
