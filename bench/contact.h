@@ -5,6 +5,7 @@
 
 #include <Eigen/Core>
 #include <Eigen/Geometry>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -48,10 +49,26 @@ struct ContactResult {
 double FloorOrWallPenetration(const ContactScene& s, const ContactBody& shape,
                               const Eigen::Vector3d& p, const Eigen::Quaterniond& q);
 
+// A fixed-step peer's run: t1/h steps of `step` (false: the run failed,
+// stop), and at every 30 Hz frame and the last step each body's pose
+// (`pose(i, p, q)`) measured for penetration into out.max_penetration.
+// Returns the CPU seconds the measuring took, which the peer leaves out of
+// its time.
+double StepAndMeasure(
+    const ContactScene& s, double h, const std::function<bool()>& step,
+    const std::function<void(size_t, Eigen::Vector3d&, Eigen::Quaterniond&)>& pose,
+    ContactResult& out);
+
 #ifdef ASGARD_BENCH_BULLET
 // Bullet in double precision at fixed steps h (no substeps); its default
 // sequential-impulse solver and sleeping.
 ContactResult RunBulletContact(const ContactScene& scene, double h);
+#endif
+
+#ifdef ASGARD_BENCH_MUJOCO
+// MuJoCo at fixed steps h: soft contacts, restitution as a damping ratio
+// (peer_mujoco_contact.cc), no sleeping.
+ContactResult RunMujocoContact(const ContactScene& scene, double h);
 #endif
 
 }  // namespace asgard::bench

@@ -12,18 +12,6 @@
 
 namespace asgard::bench {
 
-namespace {
-
-double Penetration(const ContactScene& s, size_t i, const btRigidBody& body) {
-  const btTransform& x = body.getWorldTransform();
-  const btQuaternion q = x.getRotation();
-  return FloorOrWallPenetration(s, s.bodies[i],
-                                {x.getOrigin().x(), x.getOrigin().y(), x.getOrigin().z()},
-                                Eigen::Quaterniond(q.w(), q.x(), q.y(), q.z()));
-}
-
-}  // namespace
-
 ContactResult RunBulletContact(const ContactScene& s, double h) {
   ContactResult out;
   const double c0 = ThreadCpuSeconds();
@@ -93,20 +81,22 @@ ContactResult RunBulletContact(const ContactScene& s, double h) {
     return e;
   };
   const double e0 = energy();
-  const int steps = static_cast<int>(std::lround(s.t1 / h));
-  const int per_frame = std::max(1, static_cast<int>(std::lround(1.0 / (30.0 * h))));
-  double penetration_cpu = 0.0;
-  for (int k = 1; k <= steps; ++k) {
-    world.stepSimulation(h, 0, h);
-    if (k % per_frame != 0 && k != steps) continue;
-    const double p0 = ThreadCpuSeconds();
-    for (size_t i = 0; i < moving.size(); ++i)
-      out.max_penetration = std::max(out.max_penetration, Penetration(s, i, *moving[i]));
-    penetration_cpu += ThreadCpuSeconds() - p0;
-  }
+  const double measuring = StepAndMeasure(
+      s, h,
+      [&] {
+        world.stepSimulation(h, 0, h);
+        return true;
+      },
+      [&](size_t i, Eigen::Vector3d& p, Eigen::Quaterniond& q) {
+        const btTransform& x = moving[i]->getWorldTransform();
+        const btQuaternion r = x.getRotation();
+        p = {x.getOrigin().x(), x.getOrigin().y(), x.getOrigin().z()};
+        q = Eigen::Quaterniond(r.w(), r.x(), r.y(), r.z());
+      },
+      out);
   out.final_kinetic = energy();
   out.energy_drift = std::abs(out.final_kinetic - e0) / std::max(e0, 1e-300);
-  out.cpu = ThreadCpuSeconds() - c0 - penetration_cpu;
+  out.cpu = ThreadCpuSeconds() - c0 - measuring;
   for (auto& b : bodies) world.removeRigidBody(b.get());
   return out;
 }

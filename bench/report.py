@@ -593,21 +593,30 @@ def main():
         md += ["## Contact suite", "",
                "Piles of unit cubes dropped at random rotations onto a floor (restitution 0.5, "
                "friction 0.5) and balls (radius 0.2, restitution 1, no gravity) in a closed box of "
-               "side 10, the same bodies for Asgard and for Bullet (double precision, fixed steps "
-               "h = 1/240, sleeping on). CPU seconds of the run; penetration is the deepest of any "
+               "side 10, the same bodies for Asgard, for Bullet (double precision, fixed steps "
+               "h = 1/240, sleeping on) and for MuJoCo (fixed steps h = 1/240, its default soft "
+               "contacts: no restitution, the piles critically damped, the balls on undamped "
+               "contact springs; no sleeping; bench/peer_mujoco_contact.cc). CPU seconds of the run; penetration is the deepest of any "
                "body into the floor or walls at any 30 Hz frame; final KE the total kinetic energy "
                "at the end (a settled pile: 0); drift |E(t1) − E(0)| / E(0) for the balls, whose "
                "energy restitution 1 keeps. Asgard's collision counters: windows checked, broad-"
                "phase pairs, narrow-phase (time-of-impact) queries, distance queries, impacts.", "",
-               "| scene | bodies | t1 [s] | code | status | CPU [s] | × Bullet | penetration | final KE | energy drift | impacts | windows | pairs | TOI queries | distance queries |",
-               "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|"]
-        bullet = {(r["scene"], r["t1"]): num(r["cpu_s"]) for r in cs
-                  if r["code"].startswith("bullet")}
+               "| scene | bodies | t1 [s] | code | status | CPU [s] | × Bullet | × MuJoCo | penetration | final KE | energy drift | impacts | windows | pairs | TOI queries | distance queries |",
+               "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|"]
+        def peer_cpu(prefix):
+            return {(r["scene"], r["t1"]): num(r["cpu_s"]) for r in cs
+                    if r["code"].startswith(prefix) and r["status"] == "ok"}
+        bullet, mujoco = peer_cpu("bullet"), peer_cpu("mujoco")
         for r in cs:
             ratio = ""
             b = bullet.get((r["scene"], r["t1"]))
             if r["code"] == "asgard" and b and num(r["cpu_s"]) is not None:
                 ratio = fmt(num(r["cpu_s"]) / b)
+            ratio_mj = ""
+            mj = mujoco.get((r["scene"], r["t1"]))
+            if r["code"] == "asgard" and mj and num(r["cpu_s"]) is not None:
+                ratio_mj = fmt(num(r["cpu_s"]) / mj)
+            ratio += " | " + ratio_mj
             st_ = r["status"] if r["status"] == "ok" else f"**{r['status']}** {r['error']}"
             md.append(f"| {r['scene']} | {r['bodies']} | {r['t1']} | {r['code']} | {st_} | "
                       f"{fmt(num(r['cpu_s']))} | {ratio} | {fmt(num(r['max_penetration']))} | "
@@ -615,6 +624,47 @@ def main():
                       f"{r['impacts']} | {r['windows']} | {r['broad_pairs']} | "
                       f"{r['narrow_queries']} | {r['distance_queries']} |")
         md.append("")
+        # The issue's targets, from the rows above.
+        def row_of(scene, code, t1=None):
+            for r in cs:
+                if r["scene"] == scene and r["code"].startswith(code) and r["status"] == "ok" and (
+                        t1 is None or num(r["t1"]) == t1):
+                    return r
+            return None
+        targets = []
+        for n in ("10", "30", "100"):
+            a = row_of("pile" + n, "asgard")
+            if a:
+                pen = num(a["max_penetration"])
+                targets.append(f"- pile of {n}: deepest penetration {fmt(pen)} of the unit size "
+                               f"(target < 1% at every frame) → **{'met' if pen < 0.01 else 'missed'}**; "
+                               f"final KE {fmt(num(a['final_kinetic']))}")
+        a, b = row_of("pile100", "asgard"), row_of("pile100", "bullet")
+        if a and b:
+            ratio = num(a["cpu_s"]) / num(b["cpu_s"])
+            mj = row_of("pile100", "mujoco")
+            targets.append(f"- pile of 100: CPU {fmt(ratio)}× Bullet's at h = 1/240 (target ≤ 3×) → "
+                           f"**{'met' if ratio <= 3 else 'missed'}**" +
+                           (f"; {fmt(num(a['cpu_s']) / num(mj['cpu_s']))}× MuJoCo's" if mj else ""))
+        for n in ("100", "1000"):
+            a, b = row_of("balls" + n, "asgard", 60.0), row_of("balls" + n, "bullet", 60.0)
+            if a and b:
+                cpu, ratio, drift = num(a["cpu_s"]), num(a["cpu_s"]) / num(b["cpu_s"]), num(
+                    a["energy_drift"])
+                line = (f"- {n} balls, 60 s: CPU {fmt(cpu)} s, {fmt(ratio)}× Bullet (target within 2×) → "
+                        f"**{'met' if ratio <= 2 else 'missed'}**")
+                if n == "100":
+                    line += (f"; faster than real time → **{'met' if cpu < 60 else 'missed'}**")
+                line += (f"; energy drift {fmt(drift)} (target 1e-9) → "
+                         f"**{'met' if drift <= 1e-9 else 'missed'}**")
+                bdrift, bpen = num(b["energy_drift"]), num(b["max_penetration"])
+                if (bdrift is not None and bdrift > 1) or (bpen is not None and bpen > 0.1):
+                    line += (f" (Bullet's run is not a valid one: its energy changed by "
+                             f"{fmt(bdrift)} of the initial and a ball went {fmt(bpen)} into or "
+                             f"through a wall, so its time is that of a failed run)")
+                targets.append(line)
+        if targets:
+            md += ["Targets (issue 14):", ""] + targets + [""]
         # Growth of the counters with body count: the balls scenes of one span
         # (bench/contact.cc, kGrowthSpan), Asgard's rows.
         growth = sorted((r for r in cs if r["code"] == "asgard" and r["status"] == "ok" and
@@ -632,9 +682,8 @@ def main():
                   dashed=True)
             counts = " → ".join(r["bodies"] for r in growth)
             md += ["### Counter growth with body count", "",
-                   f"Balls in the box for 10 s, {counts} balls (the quick run stops at 100; "
-                   "1000 is in the full run only). Counts over the whole run; the last columns "
-                   "divide by the row above (×10 bodies each).", ""]
+                   f"Balls in the box for 10 s, {counts} balls. Counts over the whole run; the "
+                   "last columns divide by the row above (×10 bodies each).", ""]
             if p.save(os.path.join(plots, "contact_growth.svg")):
                 md += [f"![contact growth]({rel}/contact_growth.svg)", ""]
             md += ["| bodies | CPU [s] | windows | pairs | TOI queries | distance queries | impacts "
