@@ -46,7 +46,6 @@
 #include <Eigen/Cholesky>
 #include <algorithm>
 #include <cmath>
-#include <limits>
 
 #include "core/collide/collide.h"
 
@@ -111,19 +110,22 @@ double Coupling(const BodyState& a, const BodyState& b, const Row& row, const Ei
 // point's velocity beyond its target (0 along the tangents): a convex
 // quadratic program whose optimum is the contact problem's solution
 // whenever its friction lies in the Coulomb discs.  W (two contacts couple
-// through a body they share) is singular where points are redundant (a box on its face: four
-// points, three constraints), so the program is regularized by the proximal term ½ ε ‖λ − λ_ref‖²_D
-// (D: W's diagonal), which makes it strictly convex; three proximal steps, each from the last one's
-// λ, take the error of every mode of W's range down by (ε/(σ+ε))³, and among equivalent shares of
-// redundant points they keep the nearest to the warm start (the same shares, event after event).
+// through a body they share) is singular where points are redundant (a box
+// on its face: four points, three constraints), so the program is
+// regularized by the proximal term ½ ε ‖λ − λ_ref‖²_D (D: W's diagonal),
+// which makes it strictly convex; three proximal steps, each from the last
+// one's λ, take the error of every mode of W's range down by (ε/(σ+ε))³,
+// and among equivalent shares of redundant points they keep the nearest to
+// the warm start (the same shares, event after event).
 // Each step is solved by a primal active-set method from the sweeps'
 // pressed set: on the pressed points, the program with λ_n free is one
 // linear system (LLᵀ; dense up to kDenseLimit unknowns, a dozen cubes,
 // larger islands are left to the sweeps); the step towards its solution
 // stops where a pressed point's λ_n reaches 0, which is released; at the
-// solution, the released point approaching fastest is pressed.  Each round
-// lowers f; a redundant point's inconsistent target shows as a long step
-// along W's null space, which the first point to reach 0 ends.
+// solution, the released point approaching fastest is pressed.  With the
+// friction states fixed each round lowers f; a redundant point's
+// inconsistent target shows as a long step along W's null space, which the
+// first point to reach 0 ends.
 //
 // Friction.  At the optimum a point whose sticking impulse leaves its disc
 // slides: its tangential impulse is held on the rim (scaled back along
@@ -132,9 +134,9 @@ double Coupling(const BodyState& a, const BodyState& b, const Row& row, const Ei
 // holds, while the heavily pressed ones hold the rest.  A point that pulls
 // as soon as it is pressed (its free friction, not its approach, made the
 // step: a point touching with a fast slip) slides with no friction.  A
-// point that slid stays sliding through the step, so the rounds cannot
-// cycle between the two.  The held impulses are not Coulomb's kinetic law
-// (their direction is not the slip's); the sweeps that follow correct them,
+// point that slid stays sliding through the step, so friction cannot make
+// the rounds cycle (kRounds bounds what degenerate ties might).  The held impulses are not
+// Coulomb's kinetic law (their direction is not the slip's); the sweeps that follow correct them,
 // and where they cannot settle either (tumbling, not stacking), a second
 // step that slides ends the direct steps of the solve.  The result is
 // projected on λ_n ≥ 0 and the discs and applied; a step that runs out of
@@ -170,8 +172,9 @@ class DirectStep {
              std::vector<Row>& rows, double tolerance)
       : bodies_(bodies), contacts_(contacts), rows_(rows), tolerance_(tolerance) {}
 
-  // On kSolved the impulses and the bodies are the program's solution;
-  // otherwise both are left as they were.
+  // kSolved: the impulses and the bodies are the program's solution;
+  // kSlides: its solution with some points' friction held on the rim;
+  // kUnsolved: both are left as they were.
   Direct Run() {
     const size_t n = contacts_.size();
     first_.assign(n, -1);
