@@ -319,25 +319,28 @@ void CollisionMonitor::AdoptImpacts(const std::vector<Impact>& impacts) {
   for (const Impact& x : impacts) NoteEvent(x);
 }
 
-void CollisionMonitor::NoteEvent(const Impact& impact) {
-  auto note = [&](int body) {
-    if (body < 0 || static_cast<size_t>(body) >= latest_event_.size()) return;
-    auto& t = latest_event_[static_cast<size_t>(body)];
-    t = std::max(t, impact.t);
+namespace {
+
+// Each body an event involves (its pair and its island), within [0, n).
+template <typename F>
+void ForEachBodyOf(const Impact& impact, size_t n, F&& f) {
+  auto visit = [&](int body) {
+    if (body >= 0 && static_cast<size_t>(body) < n) f(static_cast<size_t>(body));
   };
-  note(impact.a);
-  note(impact.b);
-  for (int body : impact.bodies) note(body);
+  visit(impact.a);
+  visit(impact.b);
+  for (int body : impact.bodies) visit(body);
+}
+
+}  // namespace
+
+void CollisionMonitor::NoteEvent(const Impact& impact) {
+  ForEachBodyOf(impact, latest_event_.size(),
+                [&](size_t b) { latest_event_[b] = std::max(latest_event_[b], impact.t); });
 }
 
 void CollisionMonitor::ForgetEvent(const Impact& impact) {
-  auto forget = [&](int body) {
-    if (body >= 0 && static_cast<size_t>(body) < latest_stale_.size())
-      latest_stale_[static_cast<size_t>(body)] = 1;
-  };
-  forget(impact.a);
-  forget(impact.b);
-  for (int body : impact.bodies) forget(body);
+  ForEachBodyOf(impact, latest_stale_.size(), [&](size_t b) { latest_stale_[b] = 1; });
 }
 
 double CollisionMonitor::LatestEvent(int body) const {
