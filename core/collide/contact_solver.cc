@@ -187,15 +187,23 @@ class DirectStep {
     const long m = static_cast<long>(slot_.size());
     if (m == 0 || m > kDenseLimit) return Direct::kUnsolved;
     Assemble();
-    // λ now, and q = u − W λ − target (u: the velocities now).
+    // λ now, and q = u − W λ − target (u: each slot's relative velocity
+    // now, the target only along normals).
     Eigen::VectorXd now(m), u(m);
-    for (long k = 0; k < m; ++k) {
-      now[k] = Impulse(slot_[size_t(k)]);
-      u[k] = Velocity(slot_[size_t(k)]);
+    for (size_t i = 0; i < n; ++i) {
+      if (first_[i] < 0) continue;
+      const Row& row = rows_[i];
+      const Eigen::Vector3d relative =
+          VelocityAt(Body(contacts_[i].b), row.rb) - VelocityAt(Body(contacts_[i].a), row.ra);
+      for (int axis = 0; axis < (HasFriction(i) ? 3 : 1); ++axis) {
+        const long k = first_[i] + axis;
+        now[k] = axis == 0 ? contacts_[i].normal_impulse : row.lambda_t[axis - 1];
+        u[k] = relative.dot(Direction(row, axis));
+      }
     }
     q_ = u - full_ * now;
-    for (long k = 0; k < m; ++k)
-      if (slot_[size_t(k)].axis == 0) q_[k] -= contacts_[size_t(slot_[size_t(k)].contact)].target;
+    for (size_t i = 0; i < n; ++i)
+      if (first_[i] >= 0) q_[first_[i]] -= contacts_[i].target;
     pressed_.assign(n, 0);
     for (size_t i = 0; i < n; ++i)
       pressed_[i] = first_[i] >= 0 && contacts_[i].normal_impulse > 0.0;
@@ -250,18 +258,6 @@ class DirectStep {
   bool HasFriction(size_t i) const {
     return contacts_[i].friction > 0.0 && rows_[i].inv_kt(0, 0) > 0.0;
   }
-  double Impulse(const Unknown& s) const {
-    const size_t i = static_cast<size_t>(s.contact);
-    return s.axis == 0 ? contacts_[i].normal_impulse : rows_[i].lambda_t[s.axis - 1];
-  }
-  double Velocity(const Unknown& s) {
-    const size_t i = static_cast<size_t>(s.contact);
-    const Row& row = rows_[i];
-    const Eigen::Vector3d u =
-        VelocityAt(Body(contacts_[i].b), row.rb) - VelocityAt(Body(contacts_[i].a), row.ra);
-    return u.dot(Direction(row, s.axis));
-  }
-
   // W over every slot, from each body's slots: a unit impulse along slot k
   // changes the relative velocity along slot j by
   // s_j s_k (m⁻¹ d_j·d_k + (r_j × d_j)·I⁻¹(r_k × d_k)), s = +1 on the

@@ -558,6 +558,32 @@ TEST(Contact, APileOfTenCubesAtRandomRotationsComesToRestAboveTheFloor) {
     }
 }
 
+// Unit cubes c0, c1, … of mass 1 (restitution and friction 0.5, as the
+// floor's) at the given places and rotations, under gravity g, on a static
+// floor of the given side whose top is y = 0, for t1 seconds.
+struct CubePlacement {
+  Eigen::Vector3d pos, rot;
+};
+
+std::string CubesOnAFloor(double side, const std::vector<CubePlacement>& cubes, double g,
+                          double t1) {
+  std::ostringstream text;
+  text.precision(17);
+  text << "shape_set cube -desc {-sub {-box {1 1 1}}}\n"
+       << "shape_set floor -desc {-sub {-box {" << side << " 1 " << side << "}}}\n"
+       << "body floor -shape floor -static 1 -init_pos {0 -0.5 0} -restitution 0.5 -friction 0.5\n";
+  for (size_t i = 0; i < cubes.size(); ++i) {
+    const auto& [p, r] = cubes[i];
+    const std::string c = "c" + std::to_string(i);
+    text << "body " << c << " -shape cube -mass 1 -init_pos {" << p.x() << " " << p.y() << " "
+         << p.z() << "} -init_rot {" << r.x() << " " << r.y() << " " << r.z()
+         << "} -restitution 0.5 -friction 0.5\n"
+         << "force -body " << c << " -y {-" << g << " * " << c << ".mass} -gravitational 1\n";
+  }
+  text << "simulator -finish " << t1 << "\n";
+  return text.str();
+}
+
 // A column of four cubes, each a little off the one below, dropped 1–7 cm
 // onto a floor.  The island's contacts are solved at every resting event;
 // started from zero, Gauss–Seidel stopped short of that solve's fixed point
@@ -565,19 +591,10 @@ TEST(Contact, APileOfTenCubesAtRandomRotationsComesToRestAboveTheFloor) {
 // the column never counted as at rest and hopped until the end.  Started
 // from the previous event's impulses, it settles and sleeps.
 TEST(Contact, AColumnOfFourCubesSettlesAndSleeps) {
-  std::string text =
-      "shape_set cube -desc {-sub {-box {1 1 1}}}\n"
-      "shape_set floor -desc {-sub {-box {20 1 20}}}\n"
-      "body floor -shape floor -static 1 -init_pos {0 -0.5 0} -restitution 0.5 -friction 0.5\n";
   const double x[4] = {-0.21, -0.27, -0.16, -0.41}, z[4] = {-0.12, 0.21, 0.18, 0.17};
-  for (int i = 0; i < 4; ++i) {
-    const std::string c = "c" + std::to_string(i);
-    text += "body " + c + " -shape cube -mass 1 -init_pos {" + std::to_string(x[i]) + " " +
-            std::to_string(0.51 + 1.02 * i) + " " + std::to_string(z[i]) +
-            "} -restitution 0.5 -friction 0.5\n" + "force -body " + c + " -y {-9.81 * " + c +
-            ".mass} -gravitational 1\n";
-  }
-  text += "simulator -finish 3\n";
+  std::vector<CubePlacement> cubes;
+  for (int i = 0; i < 4; ++i) cubes.push_back({{x[i], 0.51 + 1.02 * i, z[i]}, {0, 0, 0}});
+  const std::string text = CubesOnAFloor(20, cubes, 9.81, 3);
   const SceneRun run = SimulateOk(text, 1e-6, 1e-9);
   EXPECT_GE(run.collisions->counters().sleeps, 4);
   double last_event = 0.0;
@@ -605,18 +622,9 @@ TEST(Contact, AColumnOfFourCubesSettlesAndSleeps) {
 // ~1e-3 m/s, never at rest; with the direct step behind the sweeps
 // (SolveContacts) it is solved exactly and sleeps.
 TEST(Contact, ALeaningTowerOfSixCubesStandsStillAndSleeps) {
-  std::string text =
-      "shape_set cube -desc {-sub {-box {1 1 1}}}\n"
-      "shape_set floor -desc {-sub {-box {60 1 60}}}\n"
-      "body floor -shape floor -static 1 -init_pos {0 -0.5 0} -restitution 0.5 -friction 0.5\n";
-  for (int i = 0; i < 6; ++i) {
-    const std::string c = "c" + std::to_string(i);
-    text += "body " + c + " -shape cube -mass 1 -init_pos {" + std::to_string(0.12 * i) + " " +
-            std::to_string(0.5001 + 1.0001 * i) +
-            " 0} -init_rot {0 0.3 0} -restitution 0.5 -friction 0.5\n" + "force -body " + c +
-            " -y {-9.8 * " + c + ".mass} -gravitational 1\n";
-  }
-  text += "simulator -finish 3\n";
+  std::vector<CubePlacement> cubes;
+  for (int i = 0; i < 6; ++i) cubes.push_back({{0.12 * i, 0.5001 + 1.0001 * i, 0}, {0, 0.3, 0}});
+  const std::string text = CubesOnAFloor(60, cubes, 9.8, 3);
   const SceneRun run = SimulateOk(text, 1e-6, 1e-9);
   EXPECT_GE(run.collisions->counters().sleeps, 6);
   double last_event = 0.0;
