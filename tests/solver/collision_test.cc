@@ -510,7 +510,9 @@ TEST(Contact, ThreeCubesTurnedToLandOnAnEdgeComeToRestAboveTheFloor) {
 // strike each other and the floor, and all come to rest on the floor.
 TEST(Contact, APileOfTenCubesAtRandomRotationsComesToRestAboveTheFloor) {
   const SceneRun run = SimulateOk(ReadSample("../tests/solver/data/pile10.al"), 1e-6, 1e-9);
-  const double t1 = 5.0;
+  // The last cube to settle (which one, and when, turns on round-off: the
+  // pile is chaotic) has been seen at rest by 4.5 s.
+  const double t1 = 8.0;
   ExpectNoDeepOverlapAtAnyFrame(run, t1);
   double energy = 0.0;
   for (size_t b = 0; b < run.equations->bodies.size(); ++b) {
