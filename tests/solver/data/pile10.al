@@ -1,6 +1,7 @@
 # Ten cubes at random rotations dropped in a column onto a static floor
 # (issue 14): they pile up and come to rest above the floor.  The floor is
-# 60 wide: a cube struck at the fall's speed (15 m/s) is thrown metres aside.
+# 60 wide: a cube struck at the speed of its fall (up to 14 m/s) is thrown
+# metres aside.
 shape_set cube -desc {-sub {-box {1 1 1}}}
 shape_set floor -desc {-sub {-box {60 1 60}}}
 body floor -shape floor -static 1 -init_pos {0 -0.5 0} -restitution 0.5 -friction 0.5
