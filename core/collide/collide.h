@@ -285,9 +285,9 @@ struct SolverContact {
 // |P_t| ≤ μ P_n (static while inside, kinetic on its rim).  Deterministic:
 // contacts in the given order, from their warm start, a fixed number of
 // sweeps or until the largest impulse change is below `tolerance` (an
-// impulse).  Where the sweeps stall (a stack), the island's pressed points
-// are solved at once as a regularized quadratic program and the sweeps go
-// on from there (contact_solver.cc).  Returns the sweeps taken.
+// impulse).  Where the sweeps stall (a stack), the island is solved at once
+// by Newton's method in the bodies' velocities, friction cone included, and
+// the sweeps go on from there (contact_solver.cc).  Returns the sweeps taken.
 int SolveContacts(std::vector<BodyState>& bodies, std::vector<SolverContact>& contacts,
                   int max_sweeps, double tolerance);
 
