@@ -244,13 +244,14 @@ void PrintStats(const asgard::pipeline::Run& run) {
   PrintCounters(std::cout, sim.totals());
   if (run.collisions) {
     const auto& c = run.collisions->counters();
-    std::cout << "collisions: windows " << c.windows << ", broad-phase pairs "
-              << c.broad_phase_pairs << ", narrow-phase queries " << c.narrow_phase_queries
-              << ", distance queries " << c.distance_queries << ", impacts "
-              << run.collisions->impacts().size() << " (applied " << c.impacts << ", undone "
-              << c.invalidated_impacts << "; island solves " << c.resting_events << " of "
-              << c.contacts_solved << " contacts, landings answered in them " << c.impacts_absorbed
-              << ", sleeps " << c.sleeps << ", wakes " << c.wakes << ")\n";
+    std::cout << "collisions: windows " << c.windows << ", bodies boxed " << c.boxes
+              << ", loose boxes " << c.loose_boxes << ", broad-phase pairs " << c.broad_phase_pairs
+              << ", narrow-phase queries " << c.narrow_phase_queries << ", distance queries "
+              << c.distance_queries << ", impacts " << run.collisions->impacts().size()
+              << " (applied " << c.impacts << ", undone " << c.invalidated_impacts
+              << "; island solves " << c.resting_events << " of " << c.contacts_solved
+              << " contacts, landings answered in them " << c.impacts_absorbed << ", sleeps "
+              << c.sleeps << ", wakes " << c.wakes << ")\n";
     for (const auto& imp : run.collisions->impacts())
       std::cout << "  t=" << imp.t << " " << eq.bodies[imp.a].name << " - " << eq.bodies[imp.b].name
                 << " impulse " << imp.impulse << "\n";

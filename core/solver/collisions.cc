@@ -30,6 +30,20 @@ constexpr double kRestingRise = 1e-6;
 // may go unseen by the time-of-impact search (collide::TimeOfImpact): it
 // bounds that search's steps per window whatever the landing gap.
 constexpr double kGraze = 1e-3;
+// Loose boxes (CheckEpoch) take in a body's new range while each side stays
+// within kLooseGrowth radii, and reach kLooseMargin radii, or the way the
+// body goes in kLooseWindows windows at its window's pace, beyond the range;
+// more than kLooseSweep refits in one check find every body's neighbours in
+// one sweep instead of one pass over the bodies per refit.
+constexpr double kLooseGrowth = 8.0;
+constexpr double kLooseMargin = 0.25;
+constexpr double kLooseWindows = 8.0;
+constexpr size_t kLooseSweep = 8;
+// A window in which fewer than an eighth of kLooseCrowd or more moving
+// bodies are lone leaves loose boxes aside for kLooseBackoff windows,
+// doubling up to kLooseBackoffMax while they keep not paying.
+constexpr size_t kLooseCrowd = 16;
+constexpr long kLooseBackoff = 16, kLooseBackoffMax = 1024;
 // Approach speeds within this many roundings of the speeds are no approach.
 constexpr double kApproachRoundOff = 1e-12;
 // The conservative-advancement search starts with a step of this fraction
@@ -274,6 +288,14 @@ CollisionMonitor::CollisionMonitor(Simulation& sim, double separation)
   rest_from_.assign(n, -kInf);
   rest_until_.assign(n, kInf);
   window_stamp_.assign(n, 0);
+  loose_lo_.resize(n);
+  loose_hi_.resize(n);
+  loose_from_.assign(n, kInf);
+  loose_until_.assign(n, -kInf);
+  loose_scanned_.assign(n, -kInf);
+  loose_version_.assign(n, -1);
+  near_.resize(n);
+  near_static_.assign(n, 0);
   moving_index_.assign(n, -1);
   for (size_t b = 0; b < n; ++b)
     if (bodies_[b].collidable && sys_.bodies[b].first_var >= 0) {
@@ -284,8 +306,10 @@ CollisionMonitor::CollisionMonitor(Simulation& sim, double separation)
   // phase's tree for the whole run.
   for (size_t b = 0; b < bodies_.size(); ++b)
     if (bodies_[b].collidable && sys_.bodies[b].first_var < 0)
-      broad_.AddStatic(static_cast<int>(b), bodies_[b].lo - Eigen::Vector3d::Constant(separation_),
-                       bodies_[b].hi + Eigen::Vector3d::Constant(separation_));
+      for (collide::BroadPhase* phase : {&broad_, &loose_broad_})
+        phase->AddStatic(static_cast<int>(b),
+                         bodies_[b].lo - Eigen::Vector3d::Constant(separation_),
+                         bodies_[b].hi + Eigen::Vector3d::Constant(separation_));
   // Bodies land this close before an impact.  Positions are only as exact as
   // the solver's tolerance, and after an impact the components re-step to it,
   // so the gap must exceed that error or the re-stepped bodies would overlap.
@@ -396,7 +420,9 @@ void CollisionMonitor::AfterStep(int component) {
   for (int b : bodies_of_component_[component]) {
     const double old = bodies_[b].end;
     UpdateEnd(b);
-    if (bodies_[b].collidable && old < e1 && bodies_[b].end >= e1) --pending_;
+    if (!bodies_[b].collidable) continue;
+    FollowLoose(b);
+    if (old < e1 && bodies_[b].end >= e1) --pending_;
   }
   while (pending_ == 0 && epoch_ < kEpochs) {
     if (!CheckEpoch()) break;
@@ -436,6 +462,9 @@ void CollisionMonitor::Rest(int b) {
 void CollisionMonitor::Unrest(int b) {
   const size_t i = static_cast<size_t>(b);
   broad_.RemoveResting(b);
+  // Others found their neighbours against its resting box: it finds its
+  // own again (CheckEpoch) before it counts as lone.
+  loose_version_[i] = -1;
   rest_by_from_.erase({rest_from_[i], b});
   rest_by_until_.erase({rest_until_[i], b});
   moving_index_[i] = static_cast<int>(moving_.size());
@@ -463,6 +492,158 @@ std::optional<std::pair<double, double>> CollisionMonitor::HeldSpan(int b, doubl
     until = std::min(until, w.time(j));
   }
   return std::pair{from, until};
+}
+
+void CollisionMonitor::PositionRange(int b, double t0, double t1, Eigen::Vector3d& lo,
+                                     Eigen::Vector3d& hi) const {
+  const physics::BodyModel& m = sys_.bodies[static_cast<size_t>(b)];
+  for (int a = 0; a < 3; ++a) {
+    const int var = m.first_var + physics::kX + a;
+    lo[a] = hi[a] = sim_.Value(var, t0);
+    ForEachSegment(var, t0, t1, [&](const Cubic& p, double s0, double s1, double) {
+      ValueRange(p, s0, s1, lo[a], hi[a]);
+    });
+  }
+}
+
+// ---- loose boxes --------------------------------------------------------------------
+//
+// Boxing every moving body for every window costs bodies × windows even
+// where nothing is near anything (a thousand swinging pendulums: a million
+// boxes, each sampled from its waveform, and a sweep of a thousand boxes per
+// window).  Each body instead keeps a loose box that holds its motion for
+// as long as it stays inside — checked step by step as its components
+// advance, on the newest pieces of its waveform — and its neighbours, the
+// bodies it is tested with whose loose boxes (or static boxes) overlap it.
+// Only bodies with neighbours are boxed for a window.  A box that grows from
+// its previous one while small takes in a periodic motion (a swing) after a
+// few refits and then holds for good; a body travelling far starts again
+// from its window's range.
+
+void CollisionMonitor::Loosen(int b, double e0, double e1) {
+  const size_t i = static_cast<size_t>(b);
+  Eigen::Vector3d lo, hi;
+  PositionRange(b, e0, e1, lo, hi);
+  // A quarter radius beyond the range, or the way it moved in
+  // kLooseWindows windows at its speed in this one.
+  const double margin =
+      std::max(kLooseMargin * bodies_[i].radius, kLooseWindows * (hi - lo).maxCoeff());
+  if (loose_version_[i] >= 0) {
+    const Eigen::Vector3d plo = loose_lo_[i].array() + margin, phi = loose_hi_[i].array() - margin;
+    const Eigen::Vector3d glo = lo.cwiseMin(plo), ghi = hi.cwiseMax(phi);
+    if ((ghi - glo).maxCoeff() <= kLooseGrowth * bodies_[i].radius) lo = glo, hi = ghi;
+  }
+  loose_lo_[i] = lo.array() - margin;
+  loose_hi_[i] = hi.array() + margin;
+  loose_from_[i] = e0;
+  loose_until_[i] = kInf;
+  loose_scanned_[i] = e0;
+  loose_version_[i] = version_[i];
+  ++counters_.loose_boxes;
+  FollowLoose(b);
+}
+
+void CollisionMonitor::FollowLoose(int b) {
+  const size_t i = static_cast<size_t>(b);
+  if (!LooseOn() || loose_version_[i] != version_[i] || loose_until_[i] < kInf) return;
+  const double t0 = loose_scanned_[i], t1 = bodies_[i].end;
+  if (!(t1 > t0)) return;
+  const physics::BodyModel& m = sys_.bodies[i];
+  for (int a = 0; a < 3; ++a) {
+    const int var = m.first_var + physics::kX + a;
+    const Waveform& w = sim_.component(sim_.component_of(var)).waveform();
+    const int li = sim_.local_index(var);
+    // The pieces since the last check: the newest few, found from the end.
+    int k = w.size() - 1;
+    while (k > 0 && w.time(k) > t0) --k;
+    for (; k + 1 < w.size() && w.time(k) < t1; ++k) {
+      const double h = w.time(k + 1) - w.time(k);
+      if (h <= 0) continue;
+      const Cubic p = HermiteCubic(w.x(k)[li], w.f(k)[li], w.x(k + 1)[li], w.f(k + 1)[li], h,
+                                   w.bubble(k + 1)[li]);
+      // The piece in spans of a window (a ballistic piece may last the whole
+      // run): the body leaves no earlier than the first span that leaves.
+      const double s1 = std::min(1.0, (t1 - w.time(k)) / h), ds = epoch_length_ / h;
+      bool left = false;
+      for (double s0 = std::max(0.0, (t0 - w.time(k)) / h); s0 < s1; s0 += ds) {
+        double lo = kInf, hi = -kInf;
+        ValueRange(p, s0, std::min(s1, s0 + ds), lo, hi);
+        if (lo < loose_lo_[i][a] || hi > loose_hi_[i][a]) {
+          loose_until_[i] = std::min(loose_until_[i], w.time(k) + s0 * h);
+          left = true;
+          break;
+        }
+      }
+      if (left) break;
+    }
+  }
+  loose_scanned_[i] = t1;
+}
+
+bool CollisionMonitor::LooseHolds(int b, double e0, double e1) const {
+  const size_t i = static_cast<size_t>(b);
+  return loose_version_[i] == version_[i] && loose_from_[i] <= e0 && e1 <= loose_until_[i] &&
+         e1 <= loose_scanned_[i];
+}
+
+void CollisionMonitor::Near(const std::vector<int>& refit) {
+  const size_t n = bodies_.size();
+  // What a body can reach: a static body's box, a resting body's box (it
+  // does not move while it rests), a moving body's loose box.
+  auto reach = [&](size_t c, Eigen::Vector3d& lo, Eigen::Vector3d& hi) {
+    if (!bodies_[c].collidable) return false;
+    if (bodies_[c].infinite) {
+      lo = bodies_[c].lo - Eigen::Vector3d::Constant(separation_);
+      hi = bodies_[c].hi + Eigen::Vector3d::Constant(separation_);
+    } else if (broad_.Resting(static_cast<int>(c))) {
+      lo = box_lo_[c];
+      hi = box_hi_[c];
+    } else if (loose_version_[c] >= 0) {
+      const Eigen::Vector3d r = Eigen::Vector3d::Constant(bodies_[c].radius + separation_);
+      lo = loose_lo_[c] - r;
+      hi = loose_hi_[c] + r;
+    } else {
+      return false;
+    }
+    return true;
+  };
+  auto link = [&](int a, int b) {
+    if (!Tested(a, b)) return;
+    if (bodies_[static_cast<size_t>(a)].infinite) std::swap(a, b);
+    if (bodies_[static_cast<size_t>(b)].infinite) {
+      near_static_[static_cast<size_t>(a)] = 1;
+      return;
+    }
+    near_[static_cast<size_t>(a)].push_back(b);
+    near_[static_cast<size_t>(b)].push_back(a);
+  };
+  if (refit.size() > kLooseSweep) {
+    loose_broad_.Clear();  // its static boxes stay
+    for (size_t c = 0; c < n; ++c) {
+      near_[c].clear();
+      near_static_[c] = 0;
+      Eigen::Vector3d lo, hi;
+      if (!bodies_[c].infinite && reach(c, lo, hi)) loose_broad_.Add(static_cast<int>(c), lo, hi);
+    }
+    for (auto [a, b] : loose_broad_.Pairs()) link(a, b);
+    return;
+  }
+  std::vector<char> done(n, 0);
+  for (int b : refit) {
+    const size_t i = static_cast<size_t>(b);
+    for (int c : near_[i]) std::erase(near_[static_cast<size_t>(c)], b);
+    near_[i].clear();
+    near_static_[i] = 0;
+  }
+  for (int b : refit) {
+    const size_t i = static_cast<size_t>(b);
+    Eigen::Vector3d lo = Eigen::Vector3d::Zero(), hi = lo, clo = lo, chi = lo;
+    if (!reach(i, lo, hi)) continue;  // a moving body refit here always has its loose box
+    for (size_t c = 0; c < n; ++c)
+      if (c != i && !done[c] && reach(c, clo, chi) && collide::BoxesOverlap(lo, hi, clo, chi))
+        link(b, static_cast<int>(c));
+    done[i] = 1;
+  }
 }
 
 collide::Pose CollisionMonitor::PoseAt(int b, double t) const {
@@ -559,6 +740,22 @@ bool CollisionMonitor::CheckEpoch() {
     while (!rest_by_from_.empty() && rest_by_from_.rbegin()->first > e0)
       Unrest(rest_by_from_.rbegin()->second);
   }
+  // Loose boxes that do not hold this window are set again (Loosen), and
+  // their neighbours found: only bodies with neighbours are boxed below.
+  // The pairs found are those of boxing every body (each window box lies in
+  // its body's loose box), so the impacts are too.
+  // Where they do not pay (bodies crowded together, every one near another:
+  // a box full of balls), they are left for a while, longer each time.
+  const bool loose = LooseOn();
+  std::vector<int> refit;
+  if (loose)
+    for (int b : moving_)
+      if (!LooseHolds(b, e0, e1)) {
+        Loosen(b, e0, e1);
+        refit.push_back(b);
+      }
+  if (!refit.empty()) Near(refit);
+  size_t lone = 0;
   // A body holding still is not boxed again: its box is the one it had when
   // it came to rest, among the broad phase's resting boxes, which pair only
   // with moving ones — two bodies that do not move cannot collide (the pair
@@ -568,15 +765,14 @@ bool CollisionMonitor::CheckEpoch() {
   for (int b : moving_) {
     const size_t i = static_cast<size_t>(b);
     if (again && window_stamp_[i] == window_serial_ && box_version_[i] == version_[i]) continue;
-    const physics::BodyModel& m = sys_.bodies[i];
-    Eigen::Vector3d lo, hi;
-    for (int a = 0; a < 3; ++a) {
-      const int var = m.first_var + physics::kX + a;
-      lo[a] = hi[a] = sim_.Value(var, e0);
-      ForEachSegment(var, e0, e1, [&](const Cubic& p, double s0, double s1, double) {
-        ValueRange(p, s0, s1, lo[a], hi[a]);
-      });
+    // A lone body (its loose box near nothing it is tested with) cannot
+    // collide in this window.
+    if (loose && !near_static_[i] && near_[i].empty()) {
+      ++lone;
+      continue;
     }
+    Eigen::Vector3d lo, hi;
+    PositionRange(b, e0, e1, lo, hi);
     const Eigen::Vector3d r = Eigen::Vector3d::Constant(bodies_[i].radius + separation_);
     box_lo_[i] = lo - r;
     box_hi_[i] = hi + r;
@@ -591,6 +787,15 @@ bool CollisionMonitor::CheckEpoch() {
       rest_from_[i] = span->first;
       rest_until_[i] = span->second;
       resting.push_back(b);
+    }
+  }
+  if (loose && !again) {
+    if (moving_.size() >= kLooseCrowd && lone * 8 < moving_.size()) {
+      loose_resume_ = counters_.windows + loose_backoff_;
+      loose_backoff_ = std::min(2 * loose_backoff_, kLooseBackoffMax);
+      std::fill(loose_version_.begin(), loose_version_.end(), -1);  // set again on resuming
+    } else {
+      loose_backoff_ = kLooseBackoff;
     }
   }
   // The changed bodies' pairs: among themselves, with the statics and with

@@ -51,7 +51,8 @@ namespace asgard::solver {
 
 struct CollisionCounters {
   long windows = 0;               // epochs checked
-  long boxes = 0;                 // bodies boxed for a window (resting ones are not)
+  long boxes = 0;                 // bodies boxed for a window (resting and lone ones are not)
+  long loose_boxes = 0;           // loose boxes set (CheckEpoch: a body's refit)
   long broad_phase_pairs = 0;     // candidate pairs from sweep and prune
   long narrow_phase_queries = 0;  // time-of-impact searches
   long distance_queries = 0;      // distance evaluations inside them
@@ -212,6 +213,25 @@ class CollisionMonitor {
   // t0 on has equal values, zero rates and no bubble), or nothing when it
   // moves within [t0, t1].
   std::optional<std::pair<double, double>> HeldSpan(int body, double t0, double t1) const;
+  // The body's position range over [t0, t1] (the three axes' Hermite
+  // pieces, exactly), not padded.
+  void PositionRange(int body, double t0, double t1, Eigen::Vector3d& lo,
+                     Eigen::Vector3d& hi) const;
+  // Sets the body's loose box from its range over the window [e0, e1]
+  // (grown from the previous one while that stays small), finds how long
+  // its motion stays inside from e0 on, and its neighbours' list (Near).
+  void Loosen(int body, double e0, double e1);
+  // Extends the check that the body stays inside its loose box to the end
+  // of its computed motion (after each step of its components).
+  void FollowLoose(int body);
+  // Whether the body's loose box holds its motion over [e0, e1].
+  bool LooseHolds(int body, double e0, double e1) const;
+  // Whether loose boxes are in use (not left aside where they do not pay).
+  bool LooseOn() const { return counters_.windows >= loose_resume_; }
+  // Recomputes the neighbours of the bodies in `refit` (of every body, in
+  // one sweep, when they are many): the bodies each is tested with whose
+  // loose boxes, or static boxes, overlap its own.
+  void Near(const std::vector<int>& refit);
   // Moves a body's box (box_lo_, box_hi_) among the resting ones, and back.
   void Rest(int body);
   void Unrest(int body);
@@ -257,6 +277,21 @@ class CollisionMonitor {
   // its components (OnTruncate) ends that.
   std::vector<double> rest_from_, rest_until_;
   std::set<std::pair<double, int>> rest_by_from_, rest_by_until_;
+  // Loose boxes.  Each collidable body that is not static has a box that
+  // holds it (padded like a window's box) over every window from
+  // loose_from_ to loose_until_, known from its waveform up to
+  // loose_scanned_ (FollowLoose), valid while loose_version_ is its
+  // version_.  A body whose loose box overlaps no tested body's loose box
+  // and no static box (near_ empty, near_static_ 0) cannot collide in those
+  // windows: it is not boxed, sampled or swept there (CheckEpoch).
+  std::vector<Eigen::Vector3d> loose_lo_, loose_hi_;
+  std::vector<double> loose_from_, loose_until_, loose_scanned_;
+  std::vector<long> loose_version_;
+  std::vector<std::vector<int>> near_;
+  std::vector<char> near_static_;
+  collide::BroadPhase loose_broad_;  // the static boxes, and every loose box on a full rebuild
+  long loose_resume_ = 0;            // loose boxes are left aside until this window count
+  long loose_backoff_ = 16;          // for how many windows next time
   std::vector<std::vector<int>> bodies_of_component_;
   std::set<std::pair<int, int>> excluded_;    // directly linked parts of one artbody
   std::vector<Impact> impacts_;               // sorted by time
