@@ -746,6 +746,8 @@ bool CollisionMonitor::CheckEpoch() {
   // its body's loose box), so the impacts are too.
   // Where they do not pay (bodies crowded together, every one near another:
   // a box full of balls), they are left for a while, longer each time.
+  // A body refit here is boxed once whether lone or not, so that one
+  // holding still joins the resting boxes and leaves the per-window loops.
   const bool loose = LooseOn();
   std::vector<int> refit;
   if (loose)
@@ -753,6 +755,7 @@ bool CollisionMonitor::CheckEpoch() {
       if (!LooseHolds(b, e0, e1)) {
         Loosen(b, e0, e1);
         refit.push_back(b);
+        box_version_[static_cast<size_t>(b)] = -1;
       }
   if (!refit.empty()) Near(refit);
   size_t lone = 0;
@@ -769,7 +772,7 @@ bool CollisionMonitor::CheckEpoch() {
     // collide in this window.
     if (loose && !near_static_[i] && near_[i].empty()) {
       ++lone;
-      continue;
+      if (box_version_[i] >= 0) continue;
     }
     Eigen::Vector3d lo, hi;
     PositionRange(b, e0, e1, lo, hi);
