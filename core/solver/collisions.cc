@@ -646,6 +646,13 @@ void CollisionMonitor::Near(const std::vector<int>& refit) {
   }
 }
 
+void CollisionMonitor::ReadVelocities(int body, double t, Side side, double* out) const {
+  const int v = sys_.bodies[static_cast<size_t>(body)].first_var;
+  const int vars[6] = {v + physics::kDx, v + physics::kDy, v + physics::kDz,
+                       v + physics::kW1, v + physics::kW2, v + physics::kW3};
+  sim_.Values(vars, 6, t, out, side);
+}
+
 collide::Pose CollisionMonitor::PoseAt(int b, double t) const {
   const physics::BodyModel& m = sys_.bodies[b];
   collide::Pose pose;
@@ -654,9 +661,13 @@ collide::Pose CollisionMonitor::PoseAt(int b, double t) const {
     pose.R = m.q0.toRotationMatrix();
     return pose;
   }
-  auto val = [&](int slot) { return sim_.Value(m.first_var + slot, t); };
-  pose.p = {val(physics::kX), val(physics::kY), val(physics::kZ)};
-  Eigen::Quaterniond q(val(physics::kQw), val(physics::kQx), val(physics::kQy), val(physics::kQz));
+  const int v = m.first_var;
+  const int vars[7] = {v + physics::kX,  v + physics::kY,  v + physics::kZ, v + physics::kQw,
+                       v + physics::kQx, v + physics::kQy, v + physics::kQz};
+  double x[7];
+  sim_.Values(vars, 7, t, x);
+  pose.p = {x[0], x[1], x[2]};
+  Eigen::Quaterniond q(x[3], x[4], x[5], x[6]);
   pose.R = q.normalized().toRotationMatrix();
   return pose;
 }
@@ -669,23 +680,33 @@ collide::Motion CollisionMonitor::MotionOf(int b, double t0, double t1) const {
     motion.dv = motion.dw = 0.0;  // static
     return motion;
   }
+  // Rates at t0 of x, y, z, the quaternion and the spins, and values at t0
+  // (quaternion, spins) and t1 (quaternion), each read once.
+  const int v = m.first_var;
+  const int rated[10] = {v + physics::kX,  v + physics::kY,  v + physics::kZ,  v + physics::kQw,
+                         v + physics::kQx, v + physics::kQy, v + physics::kQz, v + physics::kW1,
+                         v + physics::kW2, v + physics::kW3};
+  double rate0[10], value0[7], value1[4];
+  sim_.Rates(rated, 10, t0, rate0);
+  sim_.Values(rated + 3, 7, t0, value0);
+  sim_.Values(rated + 3, 4, t1, value1);
   // Bounds on the rates of the interpolated position and orientation: the
   // exact maxima of the Hermite derivatives over the window.
-  auto rate_max = [&](int var) {
-    double r = std::abs(sim_.Rate(var, t0));
-    ForEachSegment(var, t0, t1, [&](const Cubic& p, double s0, double s1, double h) {
+  auto rate_max = [&](int k) {
+    double r = std::abs(rate0[k]);
+    ForEachSegment(rated[k], t0, t1, [&](const Cubic& p, double s0, double s1, double h) {
       r = std::max(r, RateMax(p, s0, s1, h));
     });
     return r;
   };
   double v2 = 0, q2 = 0, qmin2 = kInf;
-  for (int a = 0; a < 3; ++a) v2 += std::pow(rate_max(m.first_var + physics::kX + a), 2);
-  for (int a = 0; a < 4; ++a) q2 += std::pow(rate_max(m.first_var + physics::kQw + a), 2);
+  for (int a = 0; a < 3; ++a) v2 += std::pow(rate_max(a), 2);
+  for (int a = 0; a < 4; ++a) q2 += std::pow(rate_max(3 + a), 2);
   // |q| over the window is at least its smallest sampled norm minus the drift
   // the rate allows; quaternion norms stay near 1.
-  for (double t : {t0, t1}) {
+  for (const double* q : {value0, value1}) {
     double n2 = 0;
-    for (int a = 0; a < 4; ++a) n2 += std::pow(sim_.Value(m.first_var + physics::kQw + a, t), 2);
+    for (int a = 0; a < 4; ++a) n2 += std::pow(q[a], 2);
     qmin2 = std::min(qmin2, n2);
   }
   const double qmin = std::max(1e-3, std::sqrt(qmin2) - std::sqrt(q2) * (t1 - t0));
@@ -694,17 +715,11 @@ collide::Motion CollisionMonitor::MotionOf(int b, double t0, double t1) const {
   // Start values and change bounds (collide::Motion): dω_world/dt = R dω_body/dt.
   double wdot2 = 0;
   for (int a = 0; a < 3; ++a) {
-    motion.v0[a] = sim_.Rate(m.first_var + physics::kX + a, t0);
-    const int var = m.first_var + physics::kW1 + a;
-    double wdot = std::abs(sim_.Rate(var, t0));
-    ForEachSegment(var, t0, t1, [&](const Cubic& p, double s0, double s1, double h) {
-      wdot = std::max(wdot, RateMax(p, s0, s1, h));
-    });
+    motion.v0[a] = rate0[a];
+    const double wdot = rate_max(7 + a);
     wdot2 += wdot * wdot;
   }
-  auto val = [&](int slot) { return sim_.Value(m.first_var + slot, t0); };
-  motion.w0 =
-      PoseAt(b, t0).R * Eigen::Vector3d(val(physics::kW1), val(physics::kW2), val(physics::kW3));
+  motion.w0 = PoseAt(b, t0).R * Eigen::Vector3d(value0[4], value0[5], value0[6]);
   motion.dv = AccelBound(b, t0, t1) * (t1 - t0);
   // The orientation interpolant turns at R ω only up to the solver's error.
   motion.dw = std::sqrt(wdot2) * (t1 - t0) + 1e-3 * motion.max_angular_speed;
@@ -1109,11 +1124,11 @@ Eigen::Vector3d CollisionMonitor::PointVelocity(int body, double t, const Eigen:
                                                 Side side) const {
   const physics::BodyModel& m = sys_.bodies[body];
   if (m.first_var < 0) return Eigen::Vector3d::Zero();
-  auto val = [&](int slot) { return sim_.Value(m.first_var + slot, t, side); };
   const collide::Pose pose = PoseAt(body, t);
-  const Eigen::Vector3d v(val(physics::kDx), val(physics::kDy), val(physics::kDz));
-  const Eigen::Vector3d w =
-      pose.R * Eigen::Vector3d(val(physics::kW1), val(physics::kW2), val(physics::kW3));
+  double x[6];
+  ReadVelocities(body, t, side, x);
+  const Eigen::Vector3d v(x[0], x[1], x[2]);
+  const Eigen::Vector3d w = pose.R * Eigen::Vector3d(x[3], x[4], x[5]);
   return v + w.cross(point - pose.p);
 }
 
@@ -1169,9 +1184,10 @@ collide::BodyState CollisionMonitor::StateAt(int body, double t, bool movable) c
   st.com = pose.p;
   if (m.first_var >= 0) {
     // Right limits: an earlier event at this instant has already jumped them.
-    auto val = [&](int slot) { return sim_.Value(m.first_var + slot, t, Side::kRight); };
-    st.v = {val(physics::kDx), val(physics::kDy), val(physics::kDz)};
-    st.w = pose.R * Eigen::Vector3d(val(physics::kW1), val(physics::kW2), val(physics::kW3));
+    double x[6];
+    ReadVelocities(body, t, Side::kRight, x);
+    st.v = {x[0], x[1], x[2]};
+    st.w = pose.R * Eigen::Vector3d(x[3], x[4], x[5]);
   }
   if (movable) {
     st.inv_mass = 1.0 / m.mass;

@@ -242,6 +242,9 @@ class CollisionMonitor {
                     const Eigen::Vector3d& ref = Eigen::Vector3d::Zero()) const;
   Eigen::Vector3d AccelAt(int body, double t, double t1) const;
   collide::Pose PoseAt(int body, double t) const;
+  // The body's velocity and body-frame angular velocity variables at t
+  // (dx, dy, dz, w1, w2, w3).
+  void ReadVelocities(int body, double t, Side side, double* out) const;
   bool Prescribed(int body, double t) const;
   template <typename F>
   void ForEachSegment(int var, double t0, double t1, F&& f) const;

@@ -145,6 +145,22 @@ double Simulation::InputValue(int var, double t, Side side) const {
 
 double Simulation::Value(int var, double t, Side side) const { return InputValue(var, t, side); }
 
+void Simulation::Interpolate(const int* vars, int n, double t, Side side, bool rate,
+                             double* out) const {
+  constexpr int kRun = 16;
+  int local[kRun];
+  for (int j = 0; j < n;) {
+    const int c = partition_.component_of[vars[j]];
+    int m = 0;
+    while (j + m < n && m < kRun && partition_.component_of[vars[j + m]] == c) {
+      local[m] = local_index_[vars[j + m]];
+      ++m;
+    }
+    components_[c]->waveform().Interpolate(local, m, t, side, rate, out + j);
+    j += m;
+  }
+}
+
 double Simulation::Rate(int var, double t, Side side) const {
   return components_[partition_.component_of[var]]->waveform().Rate(local_index_[var], t, side);
 }

@@ -119,6 +119,14 @@ class Simulation {
 
   // Value and rate of variable `var` at time t (within what is computed).
   double Value(int var, double t, Side side = Side::kRight) const;
+  // Value (Rate) of vars[j] at t for j < n into out, located once per run
+  // of variables of one component.
+  void Values(const int* vars, int n, double t, double* out, Side side = Side::kRight) const {
+    Interpolate(vars, n, t, side, false, out);
+  }
+  void Rates(const int* vars, int n, double t, double* out, Side side = Side::kRight) const {
+    Interpolate(vars, n, t, side, true, out);
+  }
   double Rate(int var, double t, Side side = Side::kRight) const;
 
   // Takes over component `from` of an earlier simulation as component c
@@ -175,6 +183,7 @@ class Simulation {
   // Used by components.
   double* values() { return values_.data(); }
   double InputValue(int var, double t, Side side) const;
+  void Interpolate(const int* vars, int n, double t, Side side, bool rate, double* out) const;
   const expr::ExternFn& externs() const { return externs_; }
   double restart_step() const { return restart_step_; }
   // Rate tapes shared among components with the same equations.

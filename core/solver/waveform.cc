@@ -117,6 +117,29 @@ double Waveform::Interpolate(int i, double t, Side side, bool rate) const {
 
 double Waveform::Value(int i, double t, Side side) const { return Interpolate(i, t, side, false); }
 
+void Waveform::Interpolate(const int* idx, int n, double t, Side side, bool rate,
+                           double* out) const {
+  const int k = Locate(t, side);
+  // At a sample, its values (as the one-variable Interpolate).
+  const double* at = nullptr;
+  if (k + 1 >= size() || times_[k + 1] == times_[k] || t == times_[k])
+    at = rate ? f(k) : x(k);
+  else if (t == times_[k + 1])
+    at = rate ? f(k + 1) : x(k + 1);
+  if (at) {
+    for (int j = 0; j < n; ++j) out[j] = at[idx[j]];
+    return;
+  }
+  const double h = times_[k + 1] - times_[k];
+  const HermiteWeights w = HermiteAt((t - times_[k]) / h, h);
+  const double *x0 = x(k), *f0 = f(k), *x1 = x(k + 1), *f1 = f(k + 1), *b1 = bubble(k + 1);
+  for (int j = 0; j < n; ++j) {
+    const int i = idx[j];
+    out[j] = rate ? w.d00 * x0[i] + w.d10 * f0[i] + w.d01 * x1[i] + w.d11 * f1[i] + w.db * b1[i]
+                  : w.h00 * x0[i] + w.h10 * f0[i] + w.h01 * x1[i] + w.h11 * f1[i] + w.hb * b1[i];
+  }
+}
+
 double Waveform::Rate(int i, double t, Side side) const { return Interpolate(i, t, side, true); }
 
 }  // namespace asgard::solver

@@ -94,6 +94,10 @@ class Waveform {
   // At a jump, kLeft gives the limit from below and kRight from above.
   double Value(int i, double t, Side side) const;
   double Rate(int i, double t, Side side) const;
+  // The values (rates) of local variables idx[0..n) at t, the segment
+  // located and its weights computed once (each as Value or Rate gives it,
+  // bit for bit).
+  void Interpolate(const int* idx, int n, double t, Side side, bool rate, double* out) const;
 
  private:
   // Segment [k, k+1] containing t (k+1 < size), or the last sample (k+1 == size).

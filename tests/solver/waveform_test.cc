@@ -39,5 +39,34 @@ TEST(Waveform, JumpsHaveDistinctLeftAndRightLimits) {
   EXPECT_EQ(w.Value(0, 1, Side::kRight), 1);
 }
 
+// Reading several variables at once gives each one's Value and Rate bit for
+// bit: inside pieces with bubbles, at samples, at a jump from either side.
+TEST(Waveform, ManyVariablesAtOnceReadAsOneAtATime) {
+  constexpr int n = 4;
+  Waveform w(n);
+  double x[n], f[n], b[n];
+  auto fill = [&](double t, double shift) {
+    for (int i = 0; i < n; ++i) {
+      x[i] = std::sin(t * (i + 1)) + shift;
+      f[i] = (i + 1) * std::cos(t * (i + 1));
+      b[i] = 0.01 * (i - 1.5) * t;
+    }
+  };
+  for (double t : {0.0, 0.3, 0.7, 0.7, 1.2}) {
+    fill(t, t == 0.7 && w.size() > 2 ? 1.0 : 0.0);  // the second sample at 0.7 jumps
+    w.Append(t, x, f, {}, b);
+  }
+  const int idx[3] = {3, 0, 2};
+  for (double t : {0.0, 0.1, 0.3, 0.45, 0.7, 0.9, 1.2})
+    for (Side side : {Side::kLeft, Side::kRight})
+      for (bool rate : {false, true}) {
+        double out[3];
+        w.Interpolate(idx, 3, t, side, rate, out);
+        for (int j = 0; j < 3; ++j)
+          EXPECT_EQ(out[j], rate ? w.Rate(idx[j], t, side) : w.Value(idx[j], t, side))
+              << t << " " << j << (rate ? " rate" : " value");
+      }
+}
+
 }  // namespace
 }  // namespace asgard::solver
