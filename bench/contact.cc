@@ -177,6 +177,23 @@ ContactResult RunAsgardContact(const ContactScene& s, double timeout) {
   return r;
 }
 
+// The suite's scenes.  The growth of the collision counters with body
+// count: balls in the box for kGrowthSpan seconds, 10 → 100 → 1000; the
+// report plots the Asgard rows of the balls scenes with this t1.  The
+// issue's scenes, 100 and 1000 balls for 60 s, follow (about 30 s of the
+// suite's 50, most of it Bullet's); quick and full runs are the same here.
+std::vector<ContactScene> ContactScenes() {
+  constexpr double kGrowthSpan = 10.0;
+  return {Pile(10, 5.0, 14),
+          Pile(30, 5.0, 14),
+          Pile(100, 5.0, 14),
+          BallsInBox(10, kGrowthSpan, 14),
+          BallsInBox(100, kGrowthSpan, 14),
+          BallsInBox(1000, kGrowthSpan, 14),
+          BallsInBox(100, 60.0, 14),
+          BallsInBox(1000, 60.0, 14)};
+}
+
 }  // namespace
 
 double StepAndMeasure(
@@ -224,26 +241,26 @@ double FloorOrWallPenetration(const ContactScene& s, const ContactBody& shape,
   return deepest;
 }
 
+bool PrintContactScene(const std::string& name) {
+  for (const ContactScene& s : ContactScenes()) {
+    const std::string label = s.name + "_" + Num(s.t1) + "s";
+    if (name != s.name && name != label) continue;
+    std::fputs(SceneText(s).c_str(), stdout);
+    return true;
+  }
+  std::string names;
+  for (const ContactScene& s : ContactScenes()) names += " " + s.name + "_" + Num(s.t1) + "s";
+  Log("no contact scene %s; there are:%s (or the name before _, the first with it)", name.c_str(),
+      names.c_str());
+  return false;
+}
+
 void RunContact(const Config& cfg) {
   Csv csv(cfg.out_dir + "/contact.csv",
           {"scene", "code", "bodies", "t1", "status", "cpu_s", "max_penetration", "final_kinetic",
            "energy_drift", "impacts", "windows", "broad_pairs", "narrow_queries",
            "distance_queries", "error"});
-  // The growth of the collision counters with body count: balls in the box
-  // for kGrowthSpan seconds, 10 → 100 → 1000; the report plots the Asgard
-  // rows of the balls scenes with this t1.  The scenes, 100 and 1000
-  // balls for 60 s, follow (about 30 s of the suite's 50, most of it
-  // Bullet's); quick and full runs are the same here.
-  constexpr double kGrowthSpan = 10.0;
-  std::vector<ContactScene> scenes = {Pile(10, 5.0, 14),
-                                      Pile(30, 5.0, 14),
-                                      Pile(100, 5.0, 14),
-                                      BallsInBox(10, kGrowthSpan, 14),
-                                      BallsInBox(100, kGrowthSpan, 14),
-                                      BallsInBox(1000, kGrowthSpan, 14),
-                                      BallsInBox(100, 60.0, 14),
-                                      BallsInBox(1000, 60.0, 14)};
-  for (const ContactScene& s : scenes) {
+  for (const ContactScene& s : ContactScenes()) {
     auto row = [&](const std::string& code, const ContactResult& r) {
       Log("contact %s %s: %s cpu %.3g s, penetration %.3g, final KE %.3g, drift %.3g",
           s.name.c_str(), code.c_str(), r.status.c_str(), r.cpu, r.max_penetration, r.final_kinetic,

@@ -1,6 +1,7 @@
 // asgard_bench: the benchmark suite (scripts/bench.sh runs it).
 //
 //   asgard_bench [--quick] [--out DIR] [--repeats N] [--timeout S] [--pair dp5|tsit5] [SUITE...]
+//   asgard_bench --scene NAME   (a contact scene's script, for asgard simulate)
 //
 // Suites: workprec stiff fig57 fig511 skip stress contact articulated (default:
 // all).  Each writes CSV files into DIR (default bench-out); bench/report.py
@@ -45,11 +46,15 @@ int main(int argc, char** argv) {
       }
       cfg.pair = v == "dp5" ? asgard::solver::SolverOptions::Pair::kDormandPrince
                             : asgard::solver::SolverOptions::Pair::kTsitouras;
+    } else if (a == "--scene") {
+      return PrintContactScene(next()) ? 0 : 2;
     } else if (a == "-h" || a == "--help") {
       std::printf(
           "usage: asgard_bench [--quick] [--out DIR] [--repeats N] [--timeout S] [--pair "
           "dp5|tsit5]\n"
           "                    [SUITE...]\n"
+          "       asgard_bench --scene NAME   print a contact scene's script (pile30, "
+          "balls100_60s, ...)\n"
           "suites: workprec stiff fig57 fig511 skip stress contact articulated (default: "
           "all)\n");
       return 0;

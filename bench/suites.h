@@ -19,6 +19,9 @@ void RunSkip(const Config& cfg);
 void RunStress(const Config& cfg);
 // Contact: piles of cubes and balls in a box, Asgard against Bullet.  contact.csv
 void RunContact(const Config& cfg);
+// Prints the contact suite's scene `name` (e.g. pile30, or balls100_60s)
+// as a scene script, for asgard's CLI; false, with the names, when unknown.
+bool PrintContactScene(const std::string& name);
 // Articulated bodies: a chain of 50 and a tree of 100 linked rods against
 // MuJoCo and Bullet, chains of 10 … 50 for the cost per step per body.
 //   articulated.csv, articulated_refs.csv
