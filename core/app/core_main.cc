@@ -47,6 +47,7 @@
 #include <thread>
 
 #include "core/app/editor_rpc.h"
+#include "core/lang/lang.h"
 #include "core/pipeline/pipeline.h"
 #include "core/protocol/protocol.h"
 #include "core/render/sampler.h"
@@ -602,6 +603,8 @@ bool LimitMemory(long long mib) {
 }  // namespace
 
 int main(int argc, char** argv) {
+  // Scenes are evaluated on this thread, with nothing else running.
+  asgard::lang::CapProcessMemoryDuringEvaluation(true);
   int in = STDIN_FILENO, out = STDOUT_FILENO;
   long long shm_fd = -1, shm_size = 0, memory_mib = 0;
   for (int i = 1; i < argc; ++i) {

@@ -529,6 +529,8 @@ int Main(int argc, char** argv) {
 // Nothing escapes as a signal: running out of memory (a run asked for more
 // frames or steps than fit) is an error message and exit status 1.
 int main(int argc, char** argv) {
+  // Scenes are evaluated on this thread, with nothing else running.
+  asgard::lang::CapProcessMemoryDuringEvaluation(true);
   try {
     return Main(argc, argv);
   } catch (const std::bad_alloc&) {

@@ -25,8 +25,13 @@
 //    start (EvalLimits::memory_limit_mb).  A single command can still make a
 //    big value from small arguments (`string map`, `regsub` on a large
 //    input); see docs/language.md.  `format`/`binary format` specs with
-//    fields wider than 16 MB are refused.  The trace also keeps Tcl from inlining commands, which
-//    costs some speed; scenes are small.
+//    fields wider than 16 MB are refused.  The trace knows the commands it
+//    bounds by their tokens, not by the word that named them.  Where the
+//    process allows it (CapProcessMemoryDuringEvaluation), RLIMIT_DATA is
+//    lowered for the evaluation, so that an allocation no guard foresaw
+//    fails and Tcl's panic ends the scene with a memory error.  The trace
+//    also keeps Tcl from inlining commands, which costs some speed; scenes
+//    are small.
 //  * Each top-level command is evaluated on its own (Tcl_EvalEx on its text),
 //    so an error in one does not stop the others and `info frame` lines are
 //    relative to a known command.  Errors are located from -errorline and the
@@ -35,18 +40,22 @@
 #include <dlfcn.h>
 #include <malloc.h>
 #include <setjmp.h>
+#include <sys/resource.h>
 #include <tcl.h>
 #include <tclTomMath.h>
 
 #include <algorithm>
+#include <atomic>
 #include <chrono>
 #include <cmath>
 #include <cstdarg>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
+#include <memory>
 #include <mutex>
 #include <unordered_map>
+#include <vector>
 
 #if defined(__SANITIZE_ADDRESS__)
 #define ASGARD_ASAN_ALLOCATOR 1
@@ -158,9 +167,39 @@ size_t HeapInUse() {
 #endif
 }
 
+// The commands whose result the trace bounds from their arguments.  They are
+// known by their command token, not by the word a script wrote: Tcl looks a
+// name up as a C string, so "lrepeat\0\0" runs lrepeat, and `rename` or
+// a namespace path reach a command under another word (a guard that compared
+// the word let 1.6 GB of list text through).
+enum class Guarded {
+  kNone,
+  kJoin,
+  kString,  // the ensemble: `string map ...`
+  kStringMap,
+  kRegsub,
+  kSplit,
+  kRegexp,
+  kListRepeat,
+  kFormat,
+  kBinary,  // the ensemble: `binary format ...`
+  kBinaryFormat,
+};
+
+struct GuardState;
+
+// A guarded command's token, forgotten when the command is deleted (its token
+// could then be reused by a command of the script's).
+struct GuardedCommand {
+  GuardState* guard;
+  Tcl_Command token;
+};
+
 struct GuardState {
-  EvalContext* ctx;
+  EvalContext* ctx = nullptr;
   bool memory_exceeded = false;
+  std::unordered_map<Tcl_Command, Guarded> guarded;
+  std::vector<std::unique_ptr<GuardedCommand>> watches;
   // String sizes of large pure lists already measured: (element count,
   // element array) → bytes, so a loop over a big list is not quadratic.
   struct Measured {
@@ -210,24 +249,17 @@ std::string_view Text(Tcl_Obj* o) {
   return {s, static_cast<size_t>(len)};
 }
 
-std::string_view CommandName(Tcl_Obj* word) {
-  std::string_view name = Text(word);
-  if (name.substr(0, 2) == "::") name.remove_prefix(2);
-  return name;
-}
-
 // Commands whose result can be far larger than their arguments: a bound on
 // the result from the arguments, or 0 when there is nothing to fear.
-size_t ResultBound(GuardState& guard, int objc, Tcl_Obj* const objv[]) {
-  const std::string_view name = CommandName(objv[0]);
+size_t ResultBound(GuardState& guard, Guarded kind, int objc, Tcl_Obj* const objv[]) {
   auto len = [&](int i) { return StringBytes(guard, objv[i], kMaxResultBytes); };
-  if (name == "join" && objc == 3) {
+  if (kind == Guarded::kJoin && objc == 3) {
     int n = 0;
     if (Tcl_ListObjLength(nullptr, objv[1], &n) != TCL_OK) return 0;
     return len(1) + static_cast<size_t>(n) * len(2);
   }
-  if ((name == "string" || name == "tcl::string::map") && objc >= 3) {
-    const bool sub = name == "string";
+  if ((kind == Guarded::kString || kind == Guarded::kStringMap) && objc >= 3) {
+    const bool sub = kind == Guarded::kString;
     if (sub && Text(objv[1]) != "map") return 0;
     const int map = objc - 2, input = objc - 1;
     int n = 0;
@@ -239,7 +271,7 @@ size_t ResultBound(GuardState& guard, int objc, Tcl_Obj* const objv[]) {
     // Every input character can become the longest replacement at most.
     return (len(input) + 1) * longest;
   }
-  if (name == "regsub" && objc >= 4) {
+  if (kind == Guarded::kRegsub && objc >= 4) {
     // regsub ?switches? exp string subSpec ?varName?: every match (at most
     // one per input character, and one more) becomes subSpec, with each &
     // or \N the whole input at most.
@@ -265,9 +297,8 @@ size_t ResultBound(GuardState& guard, int objc, Tcl_Obj* const objv[]) {
 // hold values (each element a Tcl object of about 50 bytes besides its
 // text: 16 MB split into single characters takes over 1 GB before the next
 // memory check): a bound on the element count, or 0 when it is small.
-size_t ElementBound(int objc, Tcl_Obj* const objv[]) {
-  const std::string_view name = CommandName(objv[0]);
-  if (name == "split" && (objc == 2 || objc == 3)) {
+size_t ElementBound(Guarded kind, int objc, Tcl_Obj* const objv[]) {
+  if (kind == Guarded::kSplit && (objc == 2 || objc == 3)) {
     int len = 0;
     const char* s = Tcl_GetStringFromObj(objv[1], &len);
     if (static_cast<size_t>(len) < kMaxListElements) return 0;
@@ -288,7 +319,7 @@ size_t ElementBound(int objc, Tcl_Obj* const objv[]) {
     }
     return count;
   }
-  if (name == "regexp" && objc >= 3) {
+  if (kind == Guarded::kRegexp && objc >= 3) {
     // regexp ?switches? exp string ...: with -all -inline, every match (at
     // most one per input character, and one more) adds itself and each
     // subexpression (at most one per '(' of exp).
@@ -320,8 +351,8 @@ size_t ElementBound(int objc, Tcl_Obj* const objv[]) {
 // theirs, built inside the substitution where no check runs.  A list whose
 // text is over the command limit could not be passed to any command anyway,
 // so it is not made.  The text's size, or 0 when it is not lrepeat.
-size_t RepeatedListBytes(GuardState& guard, int objc, Tcl_Obj* const objv[]) {
-  if (CommandName(objv[0]) != "lrepeat" || objc < 3) return 0;
+size_t RepeatedListBytes(GuardState& guard, Guarded kind, int objc, Tcl_Obj* const objv[]) {
+  if (kind != Guarded::kListRepeat || objc < 3) return 0;
   Tcl_WideInt count = 0;
   if (Tcl_GetWideIntFromObj(nullptr, objv[1], &count) != TCL_OK || count <= 0) return 0;
   // Too many elements: lrepeat itself refuses that, with its own message.
@@ -339,11 +370,10 @@ std::string MegaBytes(size_t bytes) { return std::to_string(bytes >> 20) + " MB"
 
 // True if a `format` / `binary format` spec asks for a field wider than the
 // value limit (digit runs in the spec, or `*` with a huge argument).
-bool HugeFormat(int objc, Tcl_Obj* const objv[]) {
-  const std::string_view name = CommandName(objv[0]);
+bool HugeFormat(Guarded kind, int objc, Tcl_Obj* const objv[]) {
   int spec = -1;
-  if (name == "format" && objc >= 2) spec = 1;
-  if (name == "binary" && objc >= 3 && Text(objv[1]) == "format") spec = 2;
+  if ((kind == Guarded::kFormat || kind == Guarded::kBinaryFormat) && objc >= 2) spec = 1;
+  if (kind == Guarded::kBinary && objc >= 3 && Text(objv[1]) == "format") spec = 2;
   if (spec < 0) return false;
   const std::string_view f = Text(objv[spec]);
   size_t run = 0;
@@ -367,15 +397,20 @@ bool HugeFormat(int objc, Tcl_Obj* const objv[]) {
   return false;
 }
 
+// The command's name as Tcl looked it up: up to a NUL, at most 40 bytes.
 std::string FirstWord(Tcl_Obj* word) {
-  std::string name(CommandName(word).substr(0, 40));
-  return name;
+  std::string_view name = Text(word);
+  name = name.substr(0, std::min(name.find('\0'), size_t{40}));
+  if (name.substr(0, 2) == "::") name.remove_prefix(2);
+  return std::string(name);
 }
 
-int GuardTrace(ClientData data, Tcl_Interp* interp, int, const char*, Tcl_Command, int objc,
+int GuardTrace(ClientData data, Tcl_Interp* interp, int, const char*, Tcl_Command command, int objc,
                Tcl_Obj* const objv[]) {
   auto* guard = static_cast<GuardState*>(data);
   EvalContext& ctx = *guard->ctx;
+  const auto known = guard->guarded.find(command);
+  const Guarded kind = known == guard->guarded.end() ? Guarded::kNone : known->second;
   if (guard->memory_exceeded) {
     SetError(interp, "scene exceeded its memory limit (" +
                          std::to_string(ctx.limits.memory_limit_mb) + " MB)");
@@ -413,19 +448,19 @@ int GuardTrace(ClientData data, Tcl_Interp* interp, int, const char*, Tcl_Comman
     return TCL_ERROR;
   }
   if (objc >= 2) {
-    if (const size_t bound = ResultBound(*guard, objc, objv); bound > kMaxResultBytes) {
+    if (const size_t bound = ResultBound(*guard, kind, objc, objv); bound > kMaxResultBytes) {
       SetError(interp, "the result of \"" + FirstWord(objv[0]) + "\" could reach " +
                            std::to_string(bound) + " bytes, above the scene limit of " +
                            MegaBytes(kMaxResultBytes));
       return TCL_ERROR;
     }
-    if (const size_t text = RepeatedListBytes(*guard, objc, objv); text > kMaxCommandBytes) {
+    if (const size_t text = RepeatedListBytes(*guard, kind, objc, objv); text > kMaxCommandBytes) {
       SetError(interp, "lrepeat: the result would come to " + std::to_string(text) +
                            " bytes as text, above the scene limit of " +
                            MegaBytes(kMaxCommandBytes));
       return TCL_ERROR;
     }
-    if (const size_t count = ElementBound(objc, objv); count > kMaxListElements) {
+    if (const size_t count = ElementBound(kind, objc, objv); count > kMaxListElements) {
       SetError(interp, "the result of \"" + FirstWord(objv[0]) + "\" could have " +
                            std::to_string(count) + " elements, above the scene limit of " +
                            std::to_string(kMaxListElements) + " elements");
@@ -433,7 +468,7 @@ int GuardTrace(ClientData data, Tcl_Interp* interp, int, const char*, Tcl_Comman
     }
   }
   ctx.bytes_since_check += bytes;
-  if (objc >= 2 && HugeFormat(objc, objv)) {
+  if (objc >= 2 && HugeFormat(kind, objc, objv)) {
     SetError(interp,
              "format: field width is above the scene limit of " + MegaBytes(kMaxValueBytes));
     return TCL_ERROR;
@@ -515,6 +550,34 @@ int ListRepeat(ClientData, Tcl_Interp* interp, int objc, Tcl_Obj* const objv[]) 
   return TCL_OK;
 }
 
+void ForgetGuardedCommand(ClientData data, Tcl_Interp*, const char*, const char*, int flags) {
+  auto* watch = static_cast<GuardedCommand*>(data);
+  if ((flags & TCL_TRACE_DELETE) != 0) watch->guard->guarded.erase(watch->token);
+}
+
+void WatchGuardedCommands(Tcl_Interp* child, GuardState& guard) {
+  static constexpr std::pair<const char*, Guarded> kCommands[] = {
+      {"::join", Guarded::kJoin},
+      {"::string", Guarded::kString},
+      {"::tcl::string::map", Guarded::kStringMap},
+      {"::regsub", Guarded::kRegsub},
+      {"::split", Guarded::kSplit},
+      {"::regexp", Guarded::kRegexp},
+      {"::lrepeat", Guarded::kListRepeat},
+      {"::format", Guarded::kFormat},
+      {"::binary", Guarded::kBinary},
+      {"::tcl::binary::format", Guarded::kBinaryFormat},
+  };
+  for (const auto& [name, kind] : kCommands) {
+    Tcl_Command token = Tcl_FindCommand(child, name, nullptr, TCL_GLOBAL_ONLY);
+    if (token == nullptr) continue;
+    guard.guarded[token] = kind;
+    guard.watches.push_back(std::make_unique<GuardedCommand>(GuardedCommand{&guard, token}));
+    Tcl_TraceCommand(child, name, TCL_TRACE_DELETE, ForgetGuardedCommand,
+                     guard.watches.back().get());
+  }
+}
+
 // Makes the child safe enough and installs the guards.  Returns false (with
 // a message) if something essential could not be set up.
 bool SetUpChild(EvalContext& ctx, GuardState& guard, std::string& error) {
@@ -536,6 +599,7 @@ bool SetUpChild(EvalContext& ctx, GuardState& guard, std::string& error) {
     return false;
   }
   InstallElementCommands(ctx);
+  WatchGuardedCommands(child, guard);
   Tcl_SetRecursionLimit(child, kRecursionLimit);
   Tcl_CreateObjTrace(child, 0, 0, GuardTrace, &guard, nullptr);
 
@@ -684,6 +748,63 @@ class Interps {
 
 constexpr int kPanicked = -1000;
 
+std::atomic<bool> cap_process_memory{false};
+
+// Kilobytes of the process's data segment (what RLIMIT_DATA counts), or -1.
+long DataSegmentKb() {
+  std::FILE* f = std::fopen("/proc/self/status", "r");
+  if (f == nullptr) return -1;
+  char line[256];
+  long kb = -1;
+  while (std::fgets(line, sizeof line, f) != nullptr) {
+    if (std::strncmp(line, "VmData:", 7) == 0) {
+      kb = std::strtol(line + 7, nullptr, 10);
+      break;
+    }
+  }
+  std::fclose(f);
+  return kb;
+}
+
+// Lowers RLIMIT_DATA for the evaluation (see CapProcessMemoryDuringEvaluation)
+// and puts it back.  The slack covers what the interpreters' setup and the
+// element commands take besides the scene's own growth.
+class ProcessMemoryCap {
+ public:
+  explicit ProcessMemoryCap(size_t limit_mb) {
+#ifndef ASGARD_ASAN_ALLOCATOR
+    if (!cap_process_memory.load()) return;
+    const long kb = DataSegmentKb();
+    if (kb < 0 || ::getrlimit(RLIMIT_DATA, &saved_) != 0) return;
+    constexpr rlim_t kSlack = rlim_t{64} << 20;
+    const rlim_t cap =
+        static_cast<rlim_t>(kb) * 1024 + (static_cast<rlim_t>(limit_mb) << 20) + kSlack;
+    if (saved_.rlim_cur != RLIM_INFINITY && saved_.rlim_cur <= cap) return;
+    rlimit lowered = saved_;
+    lowered.rlim_cur = cap;
+    active_ = ::setrlimit(RLIMIT_DATA, &lowered) == 0;
+#else
+    (void)limit_mb;
+#endif
+  }
+  ~ProcessMemoryCap() {
+    if (active_) ::setrlimit(RLIMIT_DATA, &saved_);
+  }
+  ProcessMemoryCap(const ProcessMemoryCap&) = delete;
+  ProcessMemoryCap& operator=(const ProcessMemoryCap&) = delete;
+
+ private:
+  rlimit saved_{};
+  bool active_ = false;
+};
+
+// A panic because an allocation failed: the data limit above, or the
+// machine's memory.
+bool AllocationFailed(const char* message) {
+  return std::strncmp(message, "unable to alloc", 15) == 0 ||
+         std::strncmp(message, "unable to realloc", 17) == 0;
+}
+
 // Tcl_EvalEx, or kPanicked when Tcl panicked during it.  Kept apart from
 // Run so that no C++ object lives between the setjmp and the longjmp.
 int EvalGuarded(Tcl_Interp* interp, const char* script, int length) {
@@ -696,7 +817,9 @@ int EvalGuarded(Tcl_Interp* interp, const char* script, int length) {
 }
 
 void Run(EvalContext& ctx) {
-  GuardState guard{&ctx, false, {}};  // outlives the interpreters that call it
+  GuardState guard;
+  guard.ctx = &ctx;  // outlives the interpreters that call it
+  ProcessMemoryCap cap(ctx.limits.memory_limit_mb);
   Interps interps(ctx);
   scene::SourceSpan whole = ctx.map.lines().Span(0, 0);
   if (ctx.child == nullptr) {
@@ -719,8 +842,13 @@ void Run(EvalContext& ctx) {
     int rc = EvalGuarded(ctx.child, text.data() + cmd.span.begin, cmd.span.end - cmd.span.begin);
     if (rc == kPanicked) {
       interps.abandoned = true;
-      ctx.AddError("scene exceeded the limits of the Tcl interpreter (" + FirstLine(panic_message) +
-                       "); evaluation stopped",
+      const std::string what = AllocationFailed(panic_message)
+                                   ? "scene exceeded its memory limit (" +
+                                         std::to_string(ctx.limits.memory_limit_mb) +
+                                         " MB: " + FirstLine(panic_message) + ")"
+                                   : "scene exceeded the limits of the Tcl interpreter (" +
+                                         FirstLine(panic_message) + ")";
+      ctx.AddError(what + "; evaluation stopped",
                    ctx.map.ErrorSpan(static_cast<int>(i), cmd.span.line, "", false));
       ctx.master = nullptr;
       ctx.child = nullptr;
@@ -774,6 +902,8 @@ void Run(EvalContext& ctx) {
 }
 
 }  // namespace
+
+void CapProcessMemoryDuringEvaluation(bool on) { cap_process_memory.store(on); }
 
 scene::Scene Evaluate(std::string_view text, const EvalLimits& limits) {
   try {

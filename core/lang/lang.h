@@ -48,6 +48,16 @@ struct EvalLimits {
 // and the commands before it are still evaluated.
 scene::Scene Evaluate(std::string_view text, const EvalLimits& limits = {});
 
+// Lets Evaluate lower the process's data limit (RLIMIT_DATA) while a scene
+// runs, to what the process uses plus the memory limit: then every
+// allocation a scene causes fails past the limit, also one no guard foresaw
+// (a list of shared values whose text is made inside a word's substitution),
+// and the evaluation stops with an error instead of taking the machine's
+// memory.  Only for a process that evaluates on one thread while no other
+// thread allocates (the asgard tool, asgard-core); no effect under
+// AddressSanitizer, whose shadow memory is past any such limit.
+void CapProcessMemoryDuringEvaluation(bool on);
+
 // Formats a diagnostic as "FILE:LINE:COL: error: message" ("warning" for
 // warnings; "FILE: error: message" when the location is unknown).
 std::string FormatDiagnostic(std::string_view filename, const scene::Diagnostic& d);

@@ -1,6 +1,8 @@
 // The asgard command line: help, error format, exit status, outputs.
 #include <gtest/gtest.h>
+#include <sys/resource.h>
 #include <sys/wait.h>
+#include <unistd.h>
 
 #include <cstdio>
 #include <filesystem>
@@ -169,6 +171,43 @@ TEST(Cli, OutOfMemoryIsAClearErrorNotASignal) {
   ASSERT_TRUE(WIFEXITED(st)) << out;
   EXPECT_EQ(WEXITSTATUS(st), 1) << out;
   EXPECT_NE(out.find("asgard: error: out of memory"), std::string::npos) << out;
+}
+
+// A list of 4000 references to one 400 kB string is cheap, but its text
+// (1.6 GB) is made inside the substitution of `${l}s`, where no command's
+// guard runs.  The tool lowers its data limit while a scene is evaluated, so
+// that allocation fails at the memory limit (512 MB) and is reported at the
+// line: the peak stays near the limit (it was 1.6 GB, in a scene `check`
+// then reported as a mere oversized value).
+TEST(Cli, MemoryAScriptTakesOutsideAnyCommandIsLimitedToo) {
+  if (asgard::tests::kAddressSanitizer)
+    GTEST_SKIP() << "a data-segment limit cannot apply to an AddressSanitizer build";
+  const auto path = TempFile("shared.al",
+                             "set x [string repeat x 400000]\n"
+                             "for {set i 0} {$i < 4000} {incr i} {lappend l $x}\n"
+                             "set y ${l}s\n");
+  const auto log = TempFile("shared.log");
+  const pid_t pid = fork();
+  ASSERT_GE(pid, 0);
+  if (pid == 0) {
+    std::freopen(log.c_str(), "w", stdout);
+    std::freopen(log.c_str(), "w", stderr);
+    const std::string tool = std::string(ASGARD_BINARY_DIR) + "/core/app/asgard";
+    execl(tool.c_str(), tool.c_str(), "check", path.c_str(), static_cast<char*>(nullptr));
+    _exit(127);
+  }
+  int st = 0;
+  rusage usage{};
+  ASSERT_EQ(wait4(pid, &st, 0, &usage), pid);
+  std::stringstream out;
+  out << std::ifstream(log).rdbuf();
+  ASSERT_TRUE(WIFEXITED(st)) << out.str();
+  EXPECT_EQ(WEXITSTATUS(st), 1) << out.str();
+  EXPECT_NE(out.str().find(":3:1: error: scene exceeded its memory limit (512 MB"),
+            std::string::npos)
+      << out.str();
+  // The limit, its 64 MB slack and the process itself; far below 1.6 GB.
+  EXPECT_LT(usage.ru_maxrss, 700 * 1024) << "peak " << usage.ru_maxrss << " kB";
 }
 
 // Time spans that would never end, or need more frames than fit, are

@@ -152,6 +152,21 @@ std::vector<BadInput> Catalogue() {
       {"RepeatedListSubstitutedIntoAWord",
        "set l [lrepeat 4000 [lrepeat 4000 [string repeat x 100]]0t]s\n", 1, 0,
        "lrepeat: the result would come to 1616016000 bytes as text", kOtherLimit},
+      // Found by fuzz_scene: Tcl looks a command name up as a C string, so
+      // "lrepeat" with NULs after it runs lrepeat; the guard compared the
+      // whole word and let the 1.6 GB of text through.  Guards now know a
+      // command by its token, under any name.
+      {"RepeatedListBehindANulInItsName",
+       std::string("set l [lrepeat") + std::string(3, '\0') +
+           " 4000 [lrepeat 4000 [string repeat x 100]]]s\n",
+       1, 0, "lrepeat: the result would come to 1648012000 bytes as text", kOtherLimit},
+      {"RepeatedListUnderAnotherName",
+       "rename lrepeat rep\nset l [rep 4000 [rep 4000 [string repeat x 100]]]s\n", 2, 0,
+       "lrepeat: the result would come to 1648012000 bytes as text", kOtherLimit},
+      {"StringMapBlowUpThroughItsNamespace",
+       "set s [string repeat a 10000000]\n"
+       "set m [::tcl::string::map [list a [string repeat b 1000]] $s]\n",
+       2, 0, "could reach", kOtherLimit},
       {"HugeFormatWidth", "set s [format %900000000s x]\n", 1, 0, "above the scene limit",
        kOtherLimit},
       {"DeeplyNestedBrackets", "set x " + std::string(300, '[') + std::string(300, ']') + "\n", 1,
