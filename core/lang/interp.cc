@@ -750,6 +750,7 @@ constexpr int kPanicked = -1000;
 
 std::atomic<bool> cap_process_memory{false};
 
+#ifndef ASGARD_ASAN_ALLOCATOR
 // Kilobytes of the process's data segment (what RLIMIT_DATA counts), or -1.
 long DataSegmentKb() {
   std::FILE* f = std::fopen("/proc/self/status", "r");
@@ -765,6 +766,7 @@ long DataSegmentKb() {
   std::fclose(f);
   return kb;
 }
+#endif
 
 // Lowers RLIMIT_DATA for the evaluation (see CapProcessMemoryDuringEvaluation)
 // and puts it back.  The slack covers what the interpreters' setup and the
