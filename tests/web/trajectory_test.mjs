@@ -57,6 +57,21 @@ await browserTest(asgard, scene, 'trajectory', async ({ check, url, context }) =
   // The core rounds to 1e-6; the rider follows its trajectory within the solver's step.
   check(a.drawn < 2e-6, `the drawn curve is the core's at all ${a.frames} frame times (max difference ${a.drawn.toExponential(1)})`);
   check(a.ridden < 1e-4, `the rider rides it (max difference ${a.ridden.toExponential(1)})`);
+  // Each control point's time is written beside it (Figure 4.4).
+  await page.evaluate(() => new Promise((r) => requestAnimationFrame(() => requestAnimationFrame(r))));
+  const times = await page.evaluate(() => [...document.querySelectorAll('.point-time')]
+    .filter((d) => d.style.display !== 'none')
+    .map((d) => { const r = d.getBoundingClientRect(); return { id: d.dataset.id, text: d.textContent, x: r.left, y: r.bottom }; }));
+  const pathTimes = times.filter((l) => l.id.startsWith('path.'));
+  check(pathTimes.map((l) => l.text).join(', ') === 't = 0, t = 0.5, t = 1, t = 1.5, t = 2',
+    `path's control points are labelled with their times (${pathTimes.map((l) => l.text).join(', ')})`);
+  check(times.filter((l) => l.id.startsWith('slanted.')).map((l) => l.text).join(', ') === 't = 0, t = 2',
+    'so are the computed trajectory\'s');
+  const near = pathTimes.every((l) => {
+    const h = knots.find((k) => k.id === l.id);
+    return h && Math.abs(l.x - 7 - h.x) < 2 && Math.abs(l.y - h.y) < 20;
+  });
+  check(near, 'each label sits at the upper right of its point');
   await page.screenshot({ path: join(outDir, '1-trajectory.png') });
 
   // Drag the middle control point (t = 1, at the origin) up the screen.

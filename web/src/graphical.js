@@ -100,6 +100,13 @@ export class GraphicalViewer {
     this.controls = new SphereControls(this.camera, canvas, { pickPoint: (ev) => { const b = this.pickBody(ev); return b && b.world; } });
     this.controls.onChange = () => this.draw();
     this.controls.onStart = () => { if (this.viewName) this.setView(''); };
+    // The control points' times, beside them (seed Figure 4.4).
+    this.knotLayer = null;
+    if (canvas.parentElement) {
+      this.knotLayer = document.createElement('div');
+      this.knotLayer.className = 'point-times';
+      canvas.insertAdjacentElement('afterend', this.knotLayer);  // under the labels and panels
+    }
     new ResizeObserver(() => this.resize()).observe(canvas);
     this.resize();
   }
@@ -788,6 +795,37 @@ export class GraphicalViewer {
     this.scene.updateMatrixWorld();
     this.handleBatch.update();
     this.renderer.render(this.scene, this.camera);
+    this.placeKnotTimes();
+  }
+
+  // Each shown trajectory control point's time as a label at its upper
+  // right, placed at every draw (HTML over the canvas, so the text is crisp
+  // at any zoom and costs no texture).  Points behind the camera or off the
+  // canvas have none.
+  placeKnotTimes() {
+    const layer = this.knotLayer;
+    if (!layer) return;
+    const knots = this.handles.filter((h) => h.kind === 'knot' && h.object.visible && h.mesh.visible);
+    while (layer.children.length < knots.length) {
+      const d = document.createElement('div');
+      d.className = 'point-time';
+      layer.appendChild(d);
+    }
+    const w = this.canvas.clientWidth, height = this.canvas.clientHeight;
+    [...layer.children].forEach((d, i) => {
+      const h = knots[i];
+      const p = h ? h.mesh.position.clone().project(this.camera) : null;
+      const on = !!p && p.z < 1 && Math.abs(p.x) <= 1 && Math.abs(p.y) <= 1;
+      if (on) {
+        const text = `t = ${h.t}`;
+        if (d.textContent !== text) d.textContent = text;
+        d.dataset.id = h.id;
+        d.classList.toggle('read-only', !h.editable);
+        d.style.left = `${this.canvas.offsetLeft + ((p.x + 1) / 2) * w + 7}px`;
+        d.style.top = `${this.canvas.offsetTop + ((1 - p.y) / 2) * height - 20}px`;
+      }
+      d.style.display = on ? 'block' : 'none';
+    });
   }
 
   // The world matrices as the next draw will have them (a seek or a camera
