@@ -57,6 +57,19 @@ await browserTest(asgard, scene, 'trajectory', async ({ check, url, context }) =
   // The core rounds to 1e-6; the rider follows its trajectory within the solver's step.
   check(a.drawn < 2e-6, `the drawn curve is the core's at all ${a.frames} frame times (max difference ${a.drawn.toExponential(1)})`);
   check(a.ridden < 1e-4, `the rider rides it (max difference ${a.ridden.toExponential(1)})`);
+  // The rider's initial position and velocity are the trajectory's over
+  // [0, 2]: their handles are read-only, with the reason; its rotation and
+  // the free ball's position stay editable.
+  const riderHandles = await page.evaluate(() => Object.fromEntries(window.asgard.graphical.handleList()
+    .filter((h) => h.element === 'rider' || h.element === 'other').map((h) => [h.id, h])));
+  const initial = (body, param) => Object.values(riderHandles).find((h) => h.element === body && h.param === param);
+  check(initial('rider', 'init_pos') && !initial('rider', 'init_pos').editable &&
+    initial('rider', 'init_pos').reason === 'trajectory path prescribes its position from t = 0 to 2',
+    `the rider's position handle is read-only: ${initial('rider', 'init_pos')?.reason}`);
+  check(initial('rider', 'init_dpos') && !initial('rider', 'init_dpos').editable &&
+    /prescribes its velocity/.test(initial('rider', 'init_dpos').reason), 'so is its velocity handle');
+  check(initial('rider', 'init_rot')?.editable && initial('other', 'init_pos')?.editable,
+    'its rotation and the free ball\'s position are editable');
   // Each control point's time is written beside it (Figure 4.4).
   await page.evaluate(() => new Promise((r) => requestAnimationFrame(() => requestAnimationFrame(r))));
   const times = await page.evaluate(() => [...document.querySelectorAll('.point-time')]

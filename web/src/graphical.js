@@ -336,12 +336,18 @@ export class GraphicalViewer {
       // A zero vector's handle waits beside its anchor.
       return h.stubbed ? base.clone().add(stubAxis.clone().multiplyScalar(this.handleSize * 5)) : base.clone().add(v.multiplyScalar(h.scale));
     };
+    const prescribed = this.prescribedAtStart();
+    // A body's initial value that a trajectory overrides is read-only.
+    const initial = (name, param, options) => {
+      const spec = ix.vector(name, param, options), reason = prescribed.get(`${name}.${param}`);
+      return reason && spec.editable ? { ...spec, editable: false, reason } : spec;
+    };
     for (const [name, b] of this.bodies) {
       if (b.static || b.index < 0) continue;
       const centre = () => this.start(name).p;
-      add({ kind: 'position', element: name, param: 'init_pos', ...ix.vector(name, 'init_pos'),
+      add({ kind: 'position', element: name, param: 'init_pos', ...initial(name, 'init_pos'),
         where: centre, valueFrom: (p, d) => d.value.map((v, k) => round(v + p.getComponent(k) - d.point.getComponent(k))) });
-      const rot = ix.vector(name, 'init_rot', { counts: [3, 4] });
+      const rot = initial(name, 'init_rot', { counts: [3, 4] });
       add({ kind: 'rotation', element: name, param: 'init_rot', ...rot,
         anchor: centre,
         where: () => {
@@ -356,7 +362,7 @@ export class GraphicalViewer {
           return rotationLiteral(q, d.value.length === 4 ? 4 : 3);
         } });
       for (const [kind, param, axis] of [['velocity', 'init_dpos', new THREE.Vector3(1, 0, 0)], ['angvel', 'init_drot', new THREE.Vector3(0, 1, 0)]]) {
-        const h = add({ kind, element: name, param, ...ix.vector(name, param), scale: this.scales[kind],
+        const h = add({ kind, element: name, param, ...initial(name, param), scale: this.scales[kind],
           anchor: centre, where: () => h.value ? arrowTip(h, centre(), axis) : centre(), valueFrom: (p, d) => delta(h, p, d) });
       }
     }
@@ -433,6 +439,34 @@ export class GraphicalViewer {
     this.applyVisibility();
     this.placeHandles();
     if (this.ui.knots) this.ui.knots();
+  }
+
+  // The bodies' initial values that a trajectory prescribes at the start of
+  // the run ("body.init_pos" → why), as core/physics/equations.cc overrides
+  // them: -state pos sets the position and the velocity over [-from, -to]
+  // (default: the first to the last knot time), rot the rotation and the
+  // spin, dpos and drot the velocity and the spin.  Only literal times are
+  // read; a trajectory whose interval is computed is not judged here.
+  prescribedAtStart() {
+    const ix = this.index, out = new Map();
+    const sim = ix.ofKind('simulator')[0];
+    const start = Number(sim ? ix.text(sim, 'start', '0') : '0');
+    const affects = { pos: ['init_pos', 'init_dpos'], dpos: ['init_dpos'], rot: ['init_rot', 'init_drot'], drot: ['init_drot'] };
+    const words = { init_pos: 'position', init_dpos: 'velocity', init_rot: 'rotation', init_drot: 'angular velocity' };
+    for (const element of ix.ofKind('trajectory')) {
+      const body = ix.text(element, 'body');
+      const params = affects[ix.text(element, 'state', 'pos')];
+      const p = ix.get(element, 'points');
+      const knots = p ? parseKnots(p.value) : null;
+      if (!body || !params || !knots || !Number.isFinite(start)) continue;
+      const from = Number(ix.text(element, 'from', String(knots[0][0])));
+      const to = Number(ix.text(element, 'to', String(knots[knots.length - 1][0])));
+      if (!(from <= start && start <= to)) continue;
+      for (const param of params)
+        if (!out.has(`${body}.${param}`))
+          out.set(`${body}.${param}`, `trajectory ${element} prescribes its ${words[param]} from t = ${from} to ${to}`);
+    }
+    return out;
   }
 
   // A trajectory (seed Figure 4.4): its curve, and a handle per control
