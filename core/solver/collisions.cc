@@ -42,8 +42,8 @@ constexpr size_t kLooseSweep = 8;
 // A window in which fewer than an eighth of kLooseCrowd or more moving
 // bodies are lone leaves loose boxes aside for kLooseBackoff windows,
 // doubling up to kLooseBackoffMax while they keep not paying.
+// (CollisionMonitor::kLooseBackoff, kLooseBackoffMax.)
 constexpr size_t kLooseCrowd = 16;
-constexpr long kLooseBackoff = 16, kLooseBackoffMax = 1024;
 // Approach speeds within this many roundings of the speeds are no approach.
 constexpr double kApproachRoundOff = 1e-12;
 // The conservative-advancement search starts with a step of this fraction

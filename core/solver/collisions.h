@@ -6,8 +6,11 @@
 // checked over an interval both bodies are known over (seed 5.2.3):
 //
 //   epoch k  [E0 ──────────────── E1]
-//     broad phase   boxes bounding each body's sphere over the window → sweep and prune;
-//                   static bodies' exact boxes in a tree of their own (never paired)
+//     broad phase   each moving body's box over the window → sweep and prune; static
+//                   bodies' exact boxes in a tree of their own (never paired).  A body
+//                   also keeps a loose box over many windows with the bodies it
+//                   overlaps (its neighbours): one with none is not boxed, sampled
+//                   or swept for the window at all
 //     narrow phase  per candidate pair and piece pair: TimeOfImpact from the pair's
 //                   start (E0, or the last impact of either body inside the window)
 //     response      the earliest impact (ties: lowest pair) gets an impulse; the
@@ -294,7 +297,8 @@ class CollisionMonitor {
   std::vector<char> near_static_;
   collide::BroadPhase loose_broad_;  // the static boxes, and every loose box on a full rebuild
   long loose_resume_ = 0;            // loose boxes are left aside until this window count
-  long loose_backoff_ = 16;          // for how many windows next time
+  static constexpr long kLooseBackoff = 16, kLooseBackoffMax = 1024;  // windows (CheckEpoch)
+  long loose_backoff_ = kLooseBackoff;  // for how many windows next time
   std::vector<std::vector<int>> bodies_of_component_;
   std::set<std::pair<int, int>> excluded_;    // directly linked parts of one artbody
   std::vector<Impact> impacts_;               // sorted by time
