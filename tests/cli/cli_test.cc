@@ -190,8 +190,9 @@ TEST(Cli, MemoryAScriptTakesOutsideAnyCommandIsLimitedToo) {
   const pid_t pid = fork();
   ASSERT_GE(pid, 0);
   if (pid == 0) {
-    std::freopen(log.c_str(), "w", stdout);
-    std::freopen(log.c_str(), "w", stderr);
+    // One open file for both streams (two opens would overwrite each other).
+    if (std::freopen(log.c_str(), "w", stdout) == nullptr || dup2(STDOUT_FILENO, STDERR_FILENO) < 0)
+      _exit(126);
     const std::string tool = std::string(ASGARD_BINARY_DIR) + "/core/app/asgard";
     execl(tool.c_str(), tool.c_str(), "check", path.c_str(), static_cast<char*>(nullptr));
     _exit(127);

@@ -167,6 +167,8 @@ std::vector<BadInput> Catalogue() {
        "set s [string repeat a 10000000]\n"
        "set m [::tcl::string::map [list a [string repeat b 1000]] $s]\n",
        2, 0, "could reach", kOtherLimit},
+      {"HugeBinaryFormatThroughItsNamespace", "set s [::tcl::binary::format a900000000 x]\n", 1, 0,
+       "field width is above the scene limit", kOtherLimit},
       {"HugeFormatWidth", "set s [format %900000000s x]\n", 1, 0, "above the scene limit",
        kOtherLimit},
       {"DeeplyNestedBrackets", "set x " + std::string(300, '[') + std::string(300, ']') + "\n", 1,
