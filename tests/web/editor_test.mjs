@@ -9,6 +9,7 @@
 import { readFileSync } from 'node:fs';
 import { join } from 'node:path';
 import { browserTest, sleep, waitFor } from './common.mjs';
+import { formatNumber } from '../../web/src/echo.js';
 
 const [asgard, scene, outDir] = process.argv.slice(2);
 
@@ -121,6 +122,42 @@ await browserTest(asgard, scene, 'editor', async ({ check, url, context }) => {
   await b.keyboard.press('Control+Shift+KeyZ');
   check(await waitFor(() => everyB3(dragged), 'the session redo'), `Ctrl+Shift+Z redoes the drag: {${dragged}} in every viewer`);
   check(await waitFor(() => startsAt(draggedStart), 'b3 dragged in the pictures'), `and b3 starts where it was dragged to (${draggedStart})`);
+
+  // The drag's local echo (web/src/echo.js): with tab a's messages held
+  // back for 1.5 s before they leave, a's language viewers show the dragged
+  // value at once while b's (which only the session's text reaches) still
+  // show the old one; then the session writes the same characters, and on
+  // release every viewer of both tabs has the session's text.
+  const cases = [[0, '0'], [1e6, '1e+06'], [123456, '123456'], [0.001, '0.001'], [1e-4, '1e-04'], [1.5e-5, '1.5e-05'],
+    [100, '100'], [1e5, '1e+05'], [-2.5, '-2.5'], [1e21, '1e+21'], [1.2345e-7, '1.2345e-07'], [0.1, '0.1'], [123.456, '123.456'],
+    [-1e-4, '-1e-04'], [5e-324, '5e-324'], [1.7976931348623157e308, '1.7976931348623157e+308'],
+    [12345678901234567890, '12345678901234567168'], [0.30000000000000004, '0.30000000000000004'], [1e15, '1e+15'],
+    [1234567, '1234567'], [12345600, '12345600'], [-10.125, '-10.125']];
+  const misformatted = cases.filter(([v, want]) => formatNumber(v) !== want).map(([v, want]) => `${v}: ${formatNumber(v)}, not ${want}`);
+  check(misformatted.length === 0, `the echo writes numbers as the session does (std::to_chars): ${misformatted.join('; ') || 'all 22 cases'}`);
+  await a.evaluate(() => {
+    const ws = window.asgard.conn.ws, send = ws.send.bind(ws);
+    window.sendUnheld = send;
+    ws.send = (d) => setTimeout(() => send(d), 1500);  // in order: equal delays
+  });
+  const hEcho = await a.evaluate(() => window.asgard.graphical.handleScreenPos('b3'));
+  const statesA = await a.evaluate(() => window.asgard.stateCount);
+  await a.mouse.move(hEcho.x, hEcho.y);
+  await a.mouse.down();
+  await a.mouse.move(hEcho.x + 25, hEcho.y + 10);
+  const echoed = (await viewerTexts(a)).map(b3Pos), stillB = (await viewerTexts(b)).map(b3Pos);
+  check(echoed.every((v) => v && v !== dragged && v === echoed[0]) && stillB.every((v) => v === dragged),
+    `while the edit is held back, tab a's viewers show the dragged value at once ({${echoed.join('} {')}}) and tab b's still {${stillB.join('} {')}}`);
+  const reached = await waitFor(async () => (await viewerTexts(b)).every((t) => b3Pos(t) !== dragged), 'the held edit in tab b', 10000);
+  const inB2 = (await viewerTexts(b)).map(b3Pos);
+  check(reached && inB2.every((v) => v === echoed[0]), `the session wrote the same characters: {${inB2.join('} {')}} in tab b`);
+  await a.mouse.up();
+  const settled = await waitFor(async () => (await a.evaluate(() => window.asgard.stateCount)) > statesA, 'the re-simulation after the echoed drag');
+  const sessionText = await a.evaluate(() => window.asgard.text);
+  const all = [...await viewerTexts(a), ...await viewerTexts(b)];
+  check(settled && all.every((t) => t === sessionText) && !(await a.evaluate(() => window.asgard.echo)),
+    'after release every language viewer of both tabs has the session\'s text, and the echo is over');
+  await a.evaluate(() => { window.asgard.conn.ws.send = window.sendUnheld; });
 
   // Type a new body, Update in the second language viewer of the first tab.
   const editor = a.locator('.viewer[data-viewer="1"] .cm-content');

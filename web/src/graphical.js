@@ -1081,14 +1081,17 @@ export class GraphicalViewer {
 
   // One edit in flight at a time; the latest value wins.
   sendDrag(h) {
-    this.latest = { h, values: h.payload ? h.payload() : h.value.slice() };
-    if (this.inFlight) return;
-    const { values } = this.latest;
-    this.latest = null;
-    this.inFlight = this.ui.drag(h.element, h.param, values).catch((e) => this.showLabel(String(e.message || e))).then(() => {
-      this.inFlight = null;
-      if (this.latest) this.sendDrag(this.latest.h);
-    });
+    const values = h.payload ? h.payload() : h.value.slice();
+    this.latest = { h, values };
+    if (!this.inFlight) {
+      this.latest = null;
+      this.inFlight = this.ui.drag(h.element, h.param, values).catch((e) => this.showLabel(String(e.message || e))).then(() => {
+        this.inFlight = null;
+        if (this.latest) this.sendDrag(this.latest.h);
+      });
+    }
+    // This tab's language viewers show the value now (after it has left).
+    if (this.ui.preview) this.ui.preview(h.element, h.param, values);
   }
 
   // Sends the newest value now, without waiting for the one in flight (the

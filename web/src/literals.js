@@ -5,6 +5,7 @@
 // (and folds again from the ⊟ at the end of the expanded text).
 import { StateEffect, StateField } from '@codemirror/state';
 import { Decoration, EditorView, WidgetType, hoverTooltip } from '@codemirror/view';
+import { columnIndex } from './echo.js';
 
 // Parameters with a handle or a control-panel field, by element kind.
 const GRAPHICAL = {
@@ -26,13 +27,8 @@ export const isGraphical = (p) => (GRAPHICAL[p.kind] || []).includes(p.param);
 function offsetOf(doc, line, column) {
   if (!(line >= 1 && line <= doc.lines)) return -1;
   const l = doc.line(line);
-  let bytes = 1, i = 0;
-  while (bytes < column && i < l.text.length) {
-    const c = l.text.codePointAt(i);
-    bytes += c < 0x80 ? 1 : c < 0x800 ? 2 : c < 0x10000 ? 3 : 4;
-    i += c >= 0x10000 ? 2 : 1;
-  }
-  return bytes === column ? l.from + i : -1;
+  const i = columnIndex(l.text, column);
+  return i < 0 ? -1 : l.from + i;
 }
 
 // The parameter's word in the document, or null when its span is unknown.

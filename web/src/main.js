@@ -5,6 +5,7 @@
 // state, and its events keep all views of the animation — in every tab — in
 // step.
 import { Connection } from './connection.js';
+import { DragEcho } from './echo.js';
 import { download, gltfText, imageBlob, movieRequest } from './export.js';
 import { GraphicalViewer } from './graphical.js';
 import { LanguageViewer } from './language.js';
@@ -27,6 +28,7 @@ window.asgard = app;
 app.conn = conn;
 
 function applyState(state) {
+  app.echo = null;  // the fresh state's text replaces a drag's echo
   app.state = state;
   app.stateCount = (app.stateCount || 0) + 1;
   app.text = state.text;
@@ -316,16 +318,37 @@ function showViews(names, current) {
   select.value = current;
 }
 
+// A drag's value written into this tab's language viewers before the
+// session has it (echo.js).  Only from the state's own text: spans are
+// stale once the session's text has moved on without a state.
+function previewDrag(element, param, values) {
+  if (app.echo && app.echo.matches(element, param)) app.echo.set(values);
+  else app.echo = app.text === app.state?.text ? DragEcho.start(app.state, element, param, values) : null;
+  if (!app.echo) return;
+  const text = app.echo.text();
+  for (const v of app.languageViewers) v.showSession(text, null);
+}
+
+function endEcho() {
+  if (!app.echo) return;
+  app.echo = null;
+  for (const v of app.languageViewers) v.showSession(app.text, null);
+}
+
 async function main() {
   app.graphical = new GraphicalViewer(document.getElementById('canvas'), {
     label: document.getElementById('label'),
     slider: document.getElementById('time'),
     clock: document.getElementById('clock'),
     play: document.getElementById('play'),
-    // While dragging: the literal changes in every language viewer.
+    // While dragging: the literal changes in every language viewer — in
+    // this tab's at once (echo.js), in every other view when the session's
+    // `text` event comes.
+    preview: (element, param, values) => previewDrag(element, param, values),
     drag: (element, param, values) => conn.call('set_parameter', { element, param, values }),
-    // Drag end: re-simulate and show the new motion everywhere.
-    dragEnd: () => run('simulate', {}),
+    // Drag end: re-simulate and show the new motion everywhere; then the
+    // session's text, whatever became of the echo.
+    dragEnd: () => run('simulate', {}).finally(() => endEcho()),
     selected: (name, element) => showSelection(name, element),
     views: (names, current) => showViews(names, current),
     knots: () => app.trajectories && !app.trajectories.drag && app.trajectories.render(),
@@ -366,7 +389,9 @@ async function main() {
 
   conn.on('text', (e) => {
     app.text = e.text;
-    for (const v of app.languageViewers) v.showSession(e.text, null);
+    const echoed = app.echo && app.echo.over(e.text);
+    if (!echoed) app.echo = null;
+    for (const v of app.languageViewers) v.showSession(echoed || e.text, null);
     if (Array.isArray(e.values)) app.graphical.parameterEdited(e.element, e.param, e.values);
   });
   conn.on('state', (e) => applyState(e.state));
