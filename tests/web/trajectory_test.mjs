@@ -8,7 +8,8 @@
 // trajectory whose points are computed has read-only handles.  The panel
 // below the viewer: a point's value dragged in its component's graph, its
 // time dragged on the scale (not past a neighbour), a point added at the
-// shown time on the curve and deleted.  Screenshots go to OUT_DIR.
+// shown time on the curve and deleted.  A velocity trajectory (-state
+// dpos) is drawn as arrows from its body.  Screenshots go to OUT_DIR.
 import { join } from 'node:path';
 import { browserTest, dragHandle, handle, openEditor, waitFor } from './common.mjs';
 
@@ -227,5 +228,62 @@ await browserTest(asgard, scene, 'trajectory', async ({ check, url, context }) =
   sm = await marks();
   check(Math.abs(sm.marks.find((m) => m.knot === 3).x - xOf(k[3][0])) < 1, 'and the mark follows it');
   await page.screenshot({ path: join(outDir, '6-slider-marks.png') });
+
+  // A velocity trajectory (-state dpos): its values are velocities, drawn
+  // as arrows from where its body is at each point's time, at the scale of
+  // the velocity arrows, the curve through their tips; the core moves the
+  // body with those velocities; dragging a tip changes the velocity.
+  count = await page.evaluate(() => window.asgard.stateCount);
+  await page.locator('.viewer[data-viewer="0"] .cm-content').click();
+  await page.keyboard.press('Control+End');
+  await page.keyboard.insertText('\nbody pusher -shape ball -init_pos {0 3 0}\ntrajectory push -points {{0 1 0 0} {1 0 2 0} {2 -1 0 0}} -body pusher -state dpos\n');
+  await page.click('.viewer[data-viewer="0"] button.update');
+  check(await waitFor(() => page.evaluate((n) => window.asgard.stateCount > n && window.asgard.graphical.bodyNames().includes('pusher') &&
+    window.asgard.graphical.handleList().filter((h) => h.element === 'push').length === 3, count), 'the velocity trajectory'),
+  'after Update, the dpos trajectory push has three control-point handles');
+  const arrows = () => page.evaluate(() => {
+    const g = window.asgard.graphical, ix = g.bodies.get('pusher').index, times = g.poses.times;
+    const frameAt = (t) => times.findIndex((x) => Math.abs(x - t) < 1e-9);
+    const knots = g.handleList().filter((h) => h.element === 'push').map((h) => {
+      const raw = g.handles.find((x) => x.id === h.id);
+      const f = frameAt(raw.t), at = g.bodyPosition('pusher', f), vel = g.poses.velocities[f].slice(6 * ix, 6 * ix + 3);
+      const want = at.map((x, c) => x + raw.value[c] * g.scales.velocity);
+      // Pixels per world unit along the screen's x at the tip.
+      const tip = raw.mesh.position, right = tip.clone().set(1, 0, 0).applyQuaternion(g.camera.quaternion).add(tip);
+      const a = g.toScreen(tip.clone()), b = g.toScreen(right);
+      return { t: raw.t, value: raw.value, frame: f, arrow: h.arrow, off: Math.max(...h.world.map((x, c) => Math.abs(x - want[c]))),
+        vel, pxPerUnit: Math.hypot(b.x - a.x, b.y - a.y) };
+    });
+    const path = g.trajectoryPaths().push;
+    const first = knots[0], last = knots[knots.length - 1];
+    const end = (k) => g.bodyPosition('pusher', k.frame).map((x, c) => x + k.value[c] * g.scales.velocity);
+    const pathOff = Math.max(...[[path[0], end(first)], [path[path.length - 1], end(last)]].flatMap(([a, b]) => a.map((x, c) => Math.abs(x - b[c]))));
+    return { knots, pathOff, n: path.length, scale: g.scales.velocity };
+  });
+  let ar = await arrows();
+  check(ar.knots.every((k) => k.frame >= 0 && k.arrow && k.off < 1e-6),
+    `each point is the tip of an arrow from where pusher is at its time, value × ${ar.scale.toFixed(3)} long (worst ${Math.max(...ar.knots.map((k) => k.off)).toExponential(1)})`);
+  check(ar.n === 2 * 24 + 1 && ar.pathOff < 1e-6, `the curve (${ar.n} points) runs through the arrows' tips`);
+  const velOff = (a) => Math.max(...a.knots.flatMap((k) => k.vel.map((v, c) => Math.abs(v - k.value[c]))));
+  check(velOff(ar) < 1e-3, `the core moves pusher at those velocities at the points' times (worst ${velOff(ar).toExponential(1)})`);
+  await page.screenshot({ path: join(outDir, '7-velocity-trajectory.png') });
+  const mid = ar.knots[1];
+  count = await page.evaluate(() => window.asgard.stateCount);
+  await dragHandle(page, 'push.points#1', 60, 0);
+  await waitFor(() => page.evaluate((n) => window.asgard.stateCount > n, count), 'the re-simulation after the tip drag');
+  const pushKnots = (t) => {
+    const m = /trajectory push -points \{(.*)\} -body/.exec(t);
+    return m ? [...m[1].matchAll(/\{([^{}]*)\}/g)].map((g) => g[1].trim().split(/\s+/).map(Number)) : null;
+  };
+  k = pushKnots(await text(page));
+  ar = await arrows();
+  // The tip moved 60 px in the screen plane: 60 / pxPerUnit world units,
+  // so the velocity by that over the arrows' scale (values are rounded to
+  // 1e-3 per component).
+  const tipMoved = k ? Math.hypot(k[1][1] - mid.value[0], k[1][2] - mid.value[1], k[1][3] - mid.value[2]) : 0;
+  const want = 60 / mid.pxPerUnit / ar.scale;
+  check(k && k[1][0] === 1 && Math.abs(tipMoved - want) < 0.03 * want + 2e-3 && k[0].join(' ') === '0 1 0 0' && k[2].join(' ') === '2 -1 0 0',
+    `dragging the middle tip 60 px changes its velocity in the text by ${tipMoved.toFixed(3)} (≈ ${want.toFixed(3)}): {${k && k[1].join(' ')}}, was {1 ${mid.value.join(' ')}}; its time and the others kept`);
+  check(await waitFor(async () => velOff(await arrows()) < 1e-3, 'the re-simulated pusher'), 'and the re-simulated pusher has the new velocity at t = 1');
   check(errors.length === 0, `no script errors in the page ${errors.join('; ')}`);
 });

@@ -18,6 +18,8 @@ import { softwareWebGL } from './webgl.js';
 const ZERO = [0, 0, 0];
 // Handle kinds whose place depends on the time shown (graphical.placeHandles).
 const TIMED = new Set(['force', 'torque', 'offset', 'link', 'view']);
+// The arrows (and their scale) of trajectories whose values are not places.
+const TRAJECTORY_ARROWS = { dpos: 'velocity', drot: 'angvel', rot: 'angvel' };
 
 // A body's pose between two frames by cubic Hermite interpolation of the
 // poses [x y z qx qy qz qw] and velocities [vx vy vz wx wy wz] (ω in world
@@ -474,6 +476,14 @@ export class GraphicalViewer {
   // one moves that point in the screen plane (its time is kept) and sends
   // the whole list.  A trajectory whose points are not a literal is drawn
   // from the core's samples of it.
+  //
+  // A position trajectory (-state pos) is a path in space.  The values of a
+  // velocity, spin or rotation trajectory (-state dpos, drot, rot: a
+  // velocity, an angular velocity, a rotation vector axis × angle) are not
+  // places: each is an arrow from where its body is at that time in the
+  // motion shown, at the scale of the bodies' velocity (dpos) or spin arrows
+  // (drot, rot); the handle is the arrow's tip, and the curve is drawn
+  // through the tips.
   addTrajectory(element, add) {
     const ix = this.index, e = ix.elements.get(element), p = ix.get(element, 'points');
     const knots = p ? parseKnots(p.value) : null;
@@ -481,17 +491,47 @@ export class GraphicalViewer {
       : !knots ? 'its -points is not a list of {t x y z} with increasing times' : '';
     const line = new THREE.Line(new THREE.BufferGeometry(), new THREE.LineBasicMaterial({ color: reason ? 0x808080 : 0x3060d0 }));
     line.userData.element = element;
+    const arrows = TRAJECTORY_ARROWS[ix.text(element, 'state', 'pos')];
+    const body = ix.text(element, 'body');
+    const scale = () => this.scales[arrows];
+    line.userData.place = arrows ? (t, v) => this.bodyAt(body, t).add(new THREE.Vector3(...v).multiplyScalar(scale()))
+      : (t, v) => new THREE.Vector3(...v);
     const handles = [];
     (knots || []).forEach((k, i) => {
       const h = add({ kind: 'knot', element, param: 'points', id: `${element}.points#${i}`, knot: i, t: k[0],
         value: k.slice(1), editable: !reason, reason,
-        where: () => new THREE.Vector3(...h.value),
-        valueFrom: (q, d) => d.value.map((v, c) => round(v + q.getComponent(c) - d.point.getComponent(c))),
+        where: () => line.userData.place(h.t, h.value),
+        ...(arrows ? { anchor: () => this.bodyAt(body, h.t), scale: scale() } : {}),
+        valueFrom: (q, d) => d.value.map((v, c) => round(v + (q.getComponent(c) - d.point.getComponent(c)) / (arrows ? scale() : 1))),
         payload: () => handles.flatMap((x) => [x.t, ...x.value]) });
       handles.push(h);
     });
     line.userData.knots = handles;
     this.paths.add(line);
+  }
+
+  // Where body `name` is at time t of the motion shown (interpolated as
+  // playback does; its start before there is a motion).
+  bodyAt(name, t) {
+    const b = name ? this.bodies.get(name) : null;
+    if (!b) return new THREE.Vector3();
+    if (!this.poses || b.index < 0) return this.start(name).p.clone();
+    const { times, poses, velocities } = this.poses;
+    const k = 7 * b.index;
+    t = Math.min(Math.max(t, times[0]), times[times.length - 1]);
+    let lo = 0, hi = times.length - 1;
+    while (hi - lo > 1) {
+      const mid = (lo + hi) >> 1;
+      if (times[mid] <= t) lo = mid; else hi = mid;
+    }
+    const s = hi > lo && times[hi] > times[lo] ? (t - times[lo]) / (times[hi] - times[lo]) : 0;
+    if (velocities && hi > lo) {
+      const o = this.scratchPose || (this.scratchPose = new THREE.Object3D());
+      hermitePose(poses[lo], velocities[lo], poses[hi], velocities[hi], times[hi] - times[lo], s, o, k, 6 * b.index);
+      return o.position.clone();
+    }
+    const a = poses[lo], c = poses[hi];
+    return new THREE.Vector3(a[k] + s * (c[k] - a[k]), a[k + 1] + s * (c[k + 1] - a[k + 1]), a[k + 2] + s * (c[k + 2] - a[k + 2]));
   }
 
   // A `view` element (seed 4.1.7) as asgard render places its camera: the
@@ -578,12 +618,17 @@ export class GraphicalViewer {
     return { value: null, editable: false, reason: (p && p.reason) || 'an expression of time or state' };
   }
 
-  // The curve of a trajectory as drawn: through its handles, else the core's samples.
+  // The curve of a trajectory as drawn: through its handles, else the
+  // core's samples (at the frame times); an arrow trajectory's through the
+  // arrows' tips.
   pathPoints(line) {
-    const handles = line.userData.knots;
-    if (handles.length) return new TrajectoryCurve(handles.map((h) => [h.t, ...h.value])).sample();
-    const core = (this.poses.trajectories || []).find((x) => x.name === line.userData.element);
-    return core ? core.values : [];
+    const handles = line.userData.knots, place = line.userData.place;
+    if (handles.length) {
+      const curve = new TrajectoryCurve(handles.map((h) => [h.t, ...h.value]));
+      return curve.sampleTimes().map((t) => place(t, curve.value(t)).toArray());
+    }
+    const core = this.poses && (this.poses.trajectories || []).find((x) => x.name === line.userData.element);
+    return core ? core.values.map((v, i) => place(this.poses.times[i], v).toArray()) : [];
   }
 
   bodyHandleOf(element, param) { return this.handles.find((h) => h.element === element && h.param === param) || {}; }
@@ -647,6 +692,11 @@ export class GraphicalViewer {
       const v = numbers(ix.text(name, 'init_dpos')), w = numbers(ix.text(name, 'init_drot'));
       if (v) longest.velocity = Math.max(longest.velocity, Math.hypot(...v));
       if (w) longest.angvel = Math.max(longest.angvel, Math.hypot(...w));
+    }
+    for (const element of ix.ofKind('trajectory')) {
+      const kind = TRAJECTORY_ARROWS[ix.text(element, 'state', 'pos')], p = ix.get(element, 'points');
+      const knots = kind && p ? parseKnots(p.value) : null;
+      for (const k of knots || []) longest[kind] = Math.max(longest[kind], Math.hypot(k[1], k[2], k[3]));
     }
     for (const frame of (this.poses.forces || []).slice(0, 1))
       for (const f of frame) if (f) longest.force = Math.max(longest.force, Math.hypot(...f));

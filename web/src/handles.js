@@ -13,6 +13,7 @@
 //              link#i   vector    ball at an object-to-point link's fixed point
 //   light      light    pos, dir  ball at the light, arrow along a directional light's direction
 //   knot       trajectory points  ball at each control point      moves in the screen plane (its time kept)
+//                                 (-state dpos, drot, rot: the tip of an arrow from the body where it is at that time)
 //   view       view     center    ball at the centre of rotation   moves in the screen plane
 //              view     pos       knob above the point looked at   moves in the screen plane
 //              view     rot       knob on a spoke toward the eye   turns the view

@@ -65,14 +65,16 @@ export class TrajectoryCurve {
     });
   }
 
-  // `count` points along the knots' time span (every knot among them).
-  sample(count = 24) {
+  // `count` times per segment along the knots' time span (every knot's
+  // among them), and the values there.
+  sampleTimes(count = 24) {
     const { times } = this;
-    if (times.length < 2) return times.length ? [this.value(times[0])] : [];
+    if (times.length < 2) return times.slice();
     const out = [];
     for (let i = 0; i + 1 < times.length; ++i)
-      for (let k = 0; k < count; ++k) out.push(this.value(times[i] + ((times[i + 1] - times[i]) * k) / count));
-    out.push(this.value(times[times.length - 1]));
+      for (let k = 0; k < count; ++k) out.push(times[i] + ((times[i + 1] - times[i]) * k) / count);
+    out.push(times[times.length - 1]);
     return out;
   }
+  sample(count = 24) { return this.sampleTimes(count).map((t) => this.value(t)); }
 }
