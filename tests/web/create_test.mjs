@@ -5,6 +5,8 @@
 // element appears as one well-formatted command in every language viewer and
 // in both graphical viewers, and the session's Undo removes them again.
 // Delete of b1 removes the force and links that name it too, in one undo step.
+// "Force curve" makes a force that follows a new trajectory; Link's second
+// click on a trajectory links the body to its moving point.
 // Screenshots go to OUT_DIR.
 import { join } from 'node:path';
 import { browserTest, sleep, waitFor } from './common.mjs';
@@ -146,5 +148,66 @@ await browserTest(asgard, scene, 'create', async ({ check, url, context }) => {
   await a.click('#undo');
   check(await waitFor(() => everyText(pages, (t) => t === original), 'undo delete'), 'one Undo brings b1, its force and links back everywhere');
   check(await waitFor(() => b.evaluate(() => window.asgard.graphical.bodyNames().includes('b1')), 'b1 back'), 'and b1 is drawn again');
+
+  // "Force curve": a trajectory and a force on the selected body that reads
+  // it (two commands), drawn with Trajectories shown as the force's arrows
+  // from b3 at the points' times; the core's force on b3 is the curve's
+  // value (0, −1, 0) at every frame.
+  const hb3 = await a.evaluate(() => window.asgard.graphical.handleScreenPos('b3'));
+  await a.mouse.click(hb3.x, hb3.y);
+  check(await waitFor(() => a.evaluate(() => document.getElementById('selection').textContent === 'selected: b3'), 'b3 selected'), 'clicking b3 selects it');
+  await a.click('#create-force-trajectory');
+  const curveLine = /^trajectory force_curve1 -points \{\{0 0 -1 0\} \{5 0 -1 0\}\}$/m;
+  const curveForce = 'force -body b3 -x force_curve1.x -y force_curve1.y -z force_curve1.z';
+  check(await waitFor(() => everyText(pages, (t) => curveLine.test(t) && t.includes(curveForce)), 'the force curve everywhere'),
+    `"Force curve" writes the trajectory and "${curveForce}" in every language viewer`);
+  await a.check('#toggles input[data-kind="trajectories"]');
+  await waitFor(() => a.evaluate(() => window.asgard.graphical.handleList().filter((h) => h.element === 'force_curve1').length === 2), 'its handles');
+  const fc = await a.evaluate(() => {
+    const g = window.asgard.graphical, times = g.poses.times;
+    const tips = g.handleList().filter((h) => h.element === 'force_curve1').map((h) => {
+      const raw = g.handles.find((x) => x.id === h.id), f = times.findIndex((x) => Math.abs(x - raw.t) < 1e-9);
+      const want = g.bodyPosition('b3', f).map((x, c) => x + raw.value[c] * g.scales.force);
+      return { off: f < 0 || !raw.arrow ? Infinity : Math.max(...h.world.map((x, c) => Math.abs(x - want[c]))) };
+    });
+    const i = window.asgard.state.parameters.filter((p) => p.kind === 'force' && p.param === 'x').findIndex((p) => p.value === 'force_curve1.x');
+    const applied = g.poses.forces.map((frame) => frame[i]).filter(Boolean);
+    const worst = Math.max(...applied.map((v) => Math.hypot(v[0], v[1] + 1, v[2])));
+    return { tips, frames: applied.length, worst, n: times.length };
+  });
+  // (At the pendulum's force scale, set by its gravity of mass × 9.8, a
+  // unit force's arrow is shorter than a handle: its shaft is not drawn.)
+  check(fc.tips.length === 2 && fc.tips.every((t) => t.off < 1e-6),
+    `its two points are the tips of force arrows from b3 at their times (worst ${Math.max(...fc.tips.map((t) => t.off)).toExponential(1)})`);
+  check(fc.frames === fc.n && fc.worst < 1e-9, `the force on b3 is (0, -1, 0) at all ${fc.frames} frames (worst ${fc.worst.toExponential(1)})`);
+  await a.screenshot({ path: join(outDir, '7-force-curve.png') });
+
+  // Link to a trajectory: "Trajectory" makes one from b3's start, then
+  // Link, a click on b3 and one on that trajectory's last point.
+  await a.click('#create-trajectory');
+  check(await waitFor(() => a.evaluate(() => window.asgard.graphical.handleList().some((h) => h.id === 'trajectory1.points#1' && h.shown)), 'trajectory1'),
+    'Trajectory makes trajectory1, shown with its points');
+  // b3 to the middle of the canvas (the panels cover its edges).
+  await a.evaluate(() => {
+    const g = window.asgard.graphical;
+    g.seek(0);
+    const d = g.bodies.get('b3').group.position.clone().sub(g.controls.target);
+    g.camera.position.add(d);
+    g.controls.target.add(d);
+    g.controls.update();
+    g.seek(0);
+  });
+  await a.click('#create-link');
+  const q3 = await a.evaluate(() => window.asgard.graphical.bodyScreenPos('b3'));
+  await a.mouse.click(q3.x, q3.y);
+  check(await a.evaluate(() => document.getElementById('prompt').textContent.includes('a trajectory shown')), 'the second prompt offers a trajectory');
+  const k1 = await a.evaluate(() => window.asgard.graphical.handleList().find((h) => h.id === 'trajectory1.points#1'));
+  await a.mouse.click(k1.x, k1.y);
+  const trLink = /^link -body1 b3 -offset1 \{[^}]*\} -trajectory trajectory1 -tightness 10$/m;
+  check(await waitFor(() => everyText(pages, (t) => trLink.test(t)), 'the trajectory link everywhere'),
+    'a click on the trajectory makes "link -body1 b3 -offset1 {…} -trajectory trajectory1 -tightness 10" in every language viewer');
+  check(await waitFor(() => a.evaluate(() => window.asgard.state.diagnostics.filter((d) => d.severity === 'error').length === 0 && window.asgard.graphical.poses), 'simulated'),
+    'and the scene has no errors');
+  await a.screenshot({ path: join(outDir, '8-trajectory-link.png') });
   check(errors.length === 0, `no script errors in the pages ${errors.join('; ')}`);
 });

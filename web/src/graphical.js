@@ -491,8 +491,9 @@ export class GraphicalViewer {
       : !knots ? 'its -points is not a list of {t x y z} with increasing times' : '';
     const line = new THREE.Line(new THREE.BufferGeometry(), new THREE.LineBasicMaterial({ color: reason ? 0x808080 : 0x3060d0 }));
     line.userData.element = element;
-    const arrows = TRAJECTORY_ARROWS[ix.text(element, 'state', 'pos')];
-    const body = ix.text(element, 'body');
+    const forced = this.forceTrajectories().get(element);
+    const arrows = forced ? 'force' : TRAJECTORY_ARROWS[ix.text(element, 'state', 'pos')];
+    const body = forced || ix.text(element, 'body');
     const scale = () => this.scales[arrows];
     line.userData.place = arrows ? (t, v) => this.bodyAt(body, t).add(new THREE.Vector3(...v).multiplyScalar(scale()))
       : (t, v) => new THREE.Vector3(...v);
@@ -508,6 +509,23 @@ export class GraphicalViewer {
     });
     line.userData.knots = handles;
     this.paths.add(line);
+  }
+
+  // Trajectories that are a force's vector over time (trajectory → body): a
+  // trajectory with no body of its own whose value is all of a force's
+  // -x -y -z (`force -body B -x T.x -y T.y -z T.z`, as the Create menu
+  // writes it).  Drawn as that force's arrows from B, at the forces' scale.
+  forceTrajectories() {
+    const ix = this.index, out = new Map();
+    const free = new Set(ix.ofKind('trajectory').filter((t) => !ix.text(t, 'body')));
+    for (const element of ix.ofKind('force')) {
+      const words = ['x', 'y', 'z'].map((c) => (ix.text(element, c) || '').trim());
+      const m = /^([A-Za-z_][A-Za-z0-9_]*)\.x$/.exec(words[0]);
+      if (m && free.has(m[1]) && words[1] === `${m[1]}.y` && words[2] === `${m[1]}.z` && ix.text(element, 'gravitational', '0') === '0' &&
+          ix.text(element, 'torque', '0') === '0')
+        out.set(m[1], ix.text(element, 'body'));
+    }
+    return out;
   }
 
   // Where body `name` is at time t of the motion shown (interpolated as
@@ -693,8 +711,9 @@ export class GraphicalViewer {
       if (v) longest.velocity = Math.max(longest.velocity, Math.hypot(...v));
       if (w) longest.angvel = Math.max(longest.angvel, Math.hypot(...w));
     }
+    const forced = this.forceTrajectories();
     for (const element of ix.ofKind('trajectory')) {
-      const kind = TRAJECTORY_ARROWS[ix.text(element, 'state', 'pos')], p = ix.get(element, 'points');
+      const kind = forced.has(element) ? 'force' : TRAJECTORY_ARROWS[ix.text(element, 'state', 'pos')], p = ix.get(element, 'points');
       const knots = kind && p ? parseKnots(p.value) : null;
       for (const k of knots || []) longest[kind] = Math.max(longest[kind], Math.hypot(k[1], k[2], k[3]));
     }
@@ -1066,7 +1085,9 @@ export class GraphicalViewer {
     const hit = this.pickBody(ev);
     if (!this.mode) { this.select(hit ? hit.name : null); return; }
     const m = this.mode;
+    const trajectory = !hit && m.trajectory && m.picks.length ? this.pickTrajectory(ev) : null;
     if (hit) m.picks.push(hit);
+    else if (trajectory) m.picks.push({ name: null, trajectory });
     else if (m.point && m.picks.length) {
       // Off every body: a point in the plane through the view's centre.
       this.raycaster.setFromCamera(this.pointer(ev), this.camera);
@@ -1080,10 +1101,23 @@ export class GraphicalViewer {
     m.done(m.picks);
   }
 
+  // The trajectory under the pointer (one of its control points, else its
+  // drawn curve, within a handle's size), while trajectories are shown.
+  pickTrajectory(ev) {
+    if (!this.paths.visible) return null;
+    const h = this.pick(ev);
+    if (h && h.kind === 'knot') return h.element;
+    this.raycaster.setFromCamera(this.pointer(ev), this.camera);
+    this.raycaster.params.Line.threshold = this.handleSize;
+    const hit = this.raycaster.intersectObjects(this.paths.children, false)[0];
+    return hit ? hit.object.userData.element : null;
+  }
+
   // Waits for `count` clicks on bodies (with `point`, the last may be off
-  // every body: a point in space); `prompts[i]` asks for the i-th.
-  startPick({ count, prompts, point = false, done }) {
-    this.mode = { count, prompts, point, done, picks: [] };
+  // every body: a point in space; with `trajectory`, on a trajectory shown);
+  // `prompts[i]` asks for the i-th.
+  startPick({ count, prompts, point = false, trajectory = false, done }) {
+    this.mode = { count, prompts, point, trajectory, done, picks: [] };
     this.canvas.style.cursor = 'crosshair';
     this.ui.prompt(prompts[0]);
   }

@@ -153,7 +153,7 @@ function showCreateMenu(state) {
 
 function showSelection(name, element = name) {
   document.getElementById('selection').textContent = element ? `selected: ${element}` : 'no body selected';
-  for (const id of ['create-force', 'create-gravity', 'create-torque']) document.getElementById(id).disabled = !name;
+  for (const id of ['create-force', 'create-gravity', 'create-force-trajectory', 'create-torque']) document.getElementById(id).disabled = !name;
   const known = element && app.state && app.state.elements.some((e) => e.element === element);
   document.getElementById('delete-element').disabled = !known;
 }
@@ -171,10 +171,13 @@ function createLink() {
   app.graphical.startPick({
     count: 2,
     point: true,
-    prompts: ['Link: click a point on the first body (Esc cancels)', 'Link: click a point on the second body, or off every body for a point in space'],
+    trajectory: true,
+    prompts: ['Link: click a point on the first body (Esc cancels)',
+      'Link: click a point on the second body, a trajectory shown (the link follows its moving point), or off every body for a point in space'],
     done: ([a, b]) => {
       const end2 = b.name ? `-body2 ${b.name} -offset2 ${literal(b.local)}`
-        : `-x ${b.point[0]} -y ${b.point[1]} -z ${b.point[2]}`;
+        : b.trajectory ? `-trajectory ${b.trajectory}`
+          : `-x ${b.point[0]} -y ${b.point[1]} -z ${b.point[2]}`;
       create(`link -body1 ${a.name} -offset1 ${literal(a.local)} ${end2} -tightness 10`);
     },
   });
@@ -193,6 +196,18 @@ function setupCreateMenu() {
   };
   document.getElementById('create-gravity').onclick = () => {
     if (app.graphical.selected) create(`force -body ${app.graphical.selected} -gravitational 1 -x 0 -y -1 -z 0`);
+  };
+  // A force that follows a trajectory (seed 4.1): the trajectory first (a
+  // unit force along −y at the start and the end of the simulated time),
+  // then the force reading it; two commands, so two undo steps.
+  document.getElementById('create-force-trajectory').onclick = async () => {
+    const body = g().selected;
+    if (!body) return;
+    const name = freshName('force_curve');
+    const t0 = g().poses ? g().poses.t0 : 0, t1 = g().poses ? g().poses.t1 : 1;
+    await create(`trajectory ${name} -points {{${t0} 0 -1 0} {${t1} 0 -1 0}}`);
+    if (app.state.elements.some((e) => e.element === name))
+      await create(`force -body ${body} -x ${name}.x -y ${name}.y -z ${name}.z`);
   };
   document.getElementById('create-link').onclick = () => createLink();
   document.getElementById('create-torque').onclick = () => {
