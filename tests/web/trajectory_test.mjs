@@ -9,7 +9,8 @@
 // below the viewer: a point's value dragged in its component's graph, its
 // time dragged on the scale (not past a neighbour), a point added at the
 // shown time on the curve and deleted.  A velocity trajectory (-state
-// dpos) is drawn as arrows from its body.  Screenshots go to OUT_DIR.
+// dpos) is drawn as arrows from its body.  "Add at click" puts a point where
+// a click meets the plane through the curve at the shown time.  Screenshots go to OUT_DIR.
 import { join } from 'node:path';
 import { browserTest, dragHandle, handle, openEditor, waitFor } from './common.mjs';
 
@@ -285,5 +286,40 @@ await browserTest(asgard, scene, 'trajectory', async ({ check, url, context }) =
   check(k && k[1][0] === 1 && Math.abs(tipMoved - want) < 0.03 * want + 2e-3 && k[0].join(' ') === '0 1 0 0' && k[2].join(' ') === '2 -1 0 0',
     `dragging the middle tip 60 px changes its velocity in the text by ${tipMoved.toFixed(3)} (≈ ${want.toFixed(3)}): {${k && k[1].join(' ')}}, was {1 ${mid.value.join(' ')}}; its time and the others kept`);
   check(await waitFor(async () => velOff(await arrows()) < 1e-3, 'the re-simulated pusher'), 'and the re-simulated pusher has the new velocity at t = 1');
+
+  // "Add at click" (seed 4.1.4): at the shown time t = 1.7, a click in the
+  // viewer puts a point where the click meets the plane through the
+  // curve's place at t facing the camera — for path the point itself, for
+  // push (drawn as arrows) the velocity whose arrow's tip is there.
+  const clickAdd = async (element, knotsIn) => {
+    await page.selectOption('#trajectory-editor select', element);
+    const target = await page.evaluate((el) => {
+      const g = window.asgard.graphical;
+      g.seek(1.7);
+      const line = g.paths.children.find((l) => l.userData.element === el);
+      const hs = line.userData.knots, curve = new (g.trajectoryCurveClass())(hs.map((h) => [h.t, ...h.value]));
+      const through = line.userData.place(1.7, curve.value(1.7));
+      const right = through.clone().set(1, 0, 0).applyQuaternion(g.camera.quaternion);
+      const up = through.clone().set(0, 1, 0).applyQuaternion(g.camera.quaternion);
+      const w = through.clone().addScaledVector(right, 0.8).addScaledVector(up, 0.5);
+      const s = g.toScreen(w.clone()), s1 = g.toScreen(w.clone().add(right));  // one unit to the right
+      return { x: s.x, y: s.y, want: line.userData.unplace(1.7, w), perPixel: 1 / Math.hypot(s1.x - s.x, s1.y - s.y) };
+    }, element);
+    const before = await page.evaluate(() => window.asgard.stateCount);
+    await page.click('#trajectory-editor .add-click');
+    await page.mouse.click(target.x, target.y);
+    await waitFor(() => page.evaluate((n) => window.asgard.stateCount > n, before), `the state after the point added to ${element}`);
+    const k = knotsIn(await text(page));
+    return { k, added: k && k.find((q) => q[0] === 1.7), ...target };
+  };
+  const pathAdd = await clickAdd('path', knotsOf);
+  const off = (r) => (r.added ? Math.max(...r.added.slice(1).map((v, c) => Math.abs(v - r.want[c]))) : Infinity);
+  check(pathAdd.added && off(pathAdd) < pathAdd.perPixel + 1e-3,
+    `a click puts path's new point at t = 1.7 where it meets the plane: {${pathAdd.added && pathAdd.added.join(' ')}}, want {${pathAdd.want.map((v) => v.toFixed(3)).join(' ')}} (a pixel is ${pathAdd.perPixel.toFixed(4)})`);
+  const pushAdd = await clickAdd('push', pushKnots);
+  const scaleNow = await page.evaluate(() => window.asgard.graphical.scales.velocity);
+  check(pushAdd.added && pushAdd.k.length === 4 && off(pushAdd) < pushAdd.perPixel / scaleNow + 1e-3,
+    `and push's velocity at t = 1.7 is the one whose arrow ends at the click: {${pushAdd.added && pushAdd.added.join(' ')}}, want {${pushAdd.want.map((v) => v.toFixed(3)).join(' ')}}`);
+  await page.screenshot({ path: join(outDir, '8-added-by-click.png') });
   check(errors.length === 0, `no script errors in the page ${errors.join('; ')}`);
 });

@@ -497,6 +497,9 @@ export class GraphicalViewer {
     const scale = () => this.scales[arrows];
     line.userData.place = arrows ? (t, v) => this.bodyAt(body, t).add(new THREE.Vector3(...v).multiplyScalar(scale()))
       : (t, v) => new THREE.Vector3(...v);
+    // The value drawn at world point w at time t.
+    line.userData.unplace = arrows ? (t, w) => w.clone().sub(this.bodyAt(body, t)).divideScalar(scale()).toArray()
+      : (t, w) => w.toArray();
     const handles = [];
     (knots || []).forEach((k, i) => {
       const h = add({ kind: 'knot', element, param: 'points', id: `${element}.points#${i}`, knot: i, t: k[0],
@@ -1086,7 +1089,15 @@ export class GraphicalViewer {
     if (!this.mode) { this.select(hit ? hit.name : null); return; }
     const m = this.mode;
     const trajectory = !hit && m.trajectory && m.picks.length ? this.pickTrajectory(ev) : null;
-    if (hit) m.picks.push(hit);
+    if (m.space) {
+      // A point in space, bodies or not: in the plane through m.space
+      // facing the camera.
+      this.raycaster.setFromCamera(this.pointer(ev), this.camera);
+      const plane = new THREE.Plane().setFromNormalAndCoplanarPoint(this.camera.getWorldDirection(new THREE.Vector3()), m.space);
+      const p = this.raycaster.ray.intersectPlane(plane, new THREE.Vector3());
+      if (!p) return;
+      m.picks.push({ name: null, world: p, local: null, point: p.toArray() });
+    } else if (hit) m.picks.push(hit);
     else if (trajectory) m.picks.push({ name: null, trajectory });
     else if (m.point && m.picks.length) {
       // Off every body: a point in the plane through the view's centre.
@@ -1114,10 +1125,11 @@ export class GraphicalViewer {
   }
 
   // Waits for `count` clicks on bodies (with `point`, the last may be off
-  // every body: a point in space; with `trajectory`, on a trajectory shown);
-  // `prompts[i]` asks for the i-th.
-  startPick({ count, prompts, point = false, trajectory = false, done }) {
-    this.mode = { count, prompts, point, trajectory, done, picks: [] };
+  // every body: a point in space; with `trajectory`, on a trajectory shown;
+  // with `space`, a point, every click, in the plane through that point
+  // facing the camera); `prompts[i]` asks for the i-th.
+  startPick({ count, prompts, point = false, trajectory = false, space = null, done }) {
+    this.mode = { count, prompts, point, trajectory, space, done, picks: [] };
     this.canvas.style.cursor = 'crosshair';
     this.ui.prompt(prompts[0]);
   }
@@ -1216,6 +1228,7 @@ export class GraphicalViewer {
   trajectoryPaths() {
     return Object.fromEntries(this.paths.children.map((l) => [l.userData.element, this.pathPoints(l)]));
   }
+  trajectoryCurveClass() { return TrajectoryCurve; }
   trajectoryValue(element, t) {
     const line = this.paths.children.find((l) => l.userData.element === element);
     return line && line.userData.knots.length ? new TrajectoryCurve(line.userData.knots.map((h) => [h.t, ...h.value])).value(t) : null;

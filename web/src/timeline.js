@@ -4,6 +4,7 @@
 // sideways to change its time, kept between its neighbours), and one graph
 // per component (x, y, z against time) whose points are dragged up and
 // down.  "Add point" puts a control point at the shown time on the curve,
+// "Add at click" at the shown time where the user clicks in the viewer,
 // "Delete point" removes the chosen one.  Every change is the trajectory's
 // whole -points list sent through the session like a handle's drag (the
 // literal is rewritten in every language viewer as it moves); releasing or
@@ -41,6 +42,8 @@ export class TrajectoryEditor {
     this.svg = el('svg', { class: 'graphs' }, root);
     this.select.onchange = () => { this.element = this.select.value; this.selected = -1; this.render(); };
     this.add.onclick = () => this.addPoint();
+    this.addClick = root.querySelector('.add-click');
+    this.addClick.onclick = () => this.addPointByClick();
     this.remove.onclick = () => this.deletePoint();
     this.svg.addEventListener('pointermove', (ev) => this.move(ev));
     this.svg.addEventListener('pointerup', (ev) => this.release(ev));
@@ -239,6 +242,32 @@ export class TrajectoryEditor {
     list.sort((a, b) => a[0] - b[0]);
     this.selected = list.findIndex((k) => k[0] === t);
     this.end(this.element, list.flat());
+  }
+
+  // A control point at the shown time where the user clicks in the viewer
+  // (seed 4.1.4): in the plane through the curve's point at that time,
+  // facing the camera; for a trajectory drawn as arrows, the arrow's tip
+  // goes there.  Refused on an existing point's time.
+  addPointByClick() {
+    const knots = this.knots(), element = this.element;
+    const line = this.lines().find((l) => l.userData.element === element);
+    if (!line || !knots.length || !knots[0].editable) return;
+    const t = round(this.viewer.t);
+    if (knots.some((h) => Math.abs(h.t - t) < MIN_GAP)) { this.info.textContent = `a point is already at t = ${t}`; return; }
+    const curve = new TrajectoryCurve(knots.map((h) => [h.t, ...h.value]));
+    this.viewer.startPick({
+      count: 1,
+      space: line.userData.place(t, curve.value(t)),
+      prompts: [`Click where ${element}'s point at t = ${t} goes (Esc cancels)`],
+      done: ([p]) => {
+        const list = this.knots().map((h) => [h.t, ...h.value]);
+        if (list.some((k) => Math.abs(k[0] - t) < MIN_GAP)) return;
+        list.push([t, ...line.userData.unplace(t, p.world).map((v) => round(v))]);
+        list.sort((a, b) => a[0] - b[0]);
+        this.selected = list.findIndex((k) => k[0] === t);
+        this.end(element, list.flat());
+      },
+    });
   }
 
   deletePoint() {
