@@ -251,10 +251,36 @@ await browserTest(asgard, scene, 'camera', async ({ check, url, context }) => {
   check(!!(await created(/^torque -body brick -x 0 -y 0 -z 1$/)), 'Torque makes "torque -body brick -x 0 -y 0 -z 1"');
   check(await waitFor(() => page.evaluate(() => window.asgard.graphical.handleList().some((h) => h.element === 'torque#3' && h.kind === 'torque')), 'handle'),
     'and the new torque has a handle');
+  // Light: a click places it, in the plane through the view's centre
+  // facing the camera; Sun: a directional light along the view.
   await page.click('#create-light');
+  check(await page.evaluate(() => document.getElementById('prompt').textContent.startsWith('Light: click')), 'Light asks for a click');
+  const lightAt = { x: cx + 40, y: cy - 30 };
+  const wantLight = await page.evaluate(({ x, y }) => {
+    const g = window.asgard.graphical, r = g.canvas.getBoundingClientRect();
+    const c = g.controls.target.clone(), d = g.camera.getWorldDirection(c.clone());
+    // The pixel's ray (unprojected at the near and far planes) met with the plane.
+    const onPlane = (px, py) => {
+      const ndc = (z) => c.clone().set(((px - r.left) / r.width) * 2 - 1, -((py - r.top) / r.height) * 2 + 1, z).unproject(g.camera);
+      const a = ndc(-1), dir = ndc(1).sub(a);
+      return a.addScaledVector(dir, c.clone().sub(a).dot(d) / dir.dot(d));
+    };
+    const p = onPlane(x, y);
+    return { p: p.toArray(), pixel: onPlane(x + 1, y).distanceTo(p) };
+  }, lightAt);
+  await page.mouse.click(lightAt.x, lightAt.y);
   const light = await created(/^lightsource -type point -pos \{[^}]*\}$/);
-  check(!!light && await waitFor(() => page.evaluate(() => window.asgard.graphical.sceneLights.children.some((l) => l.type === 'PointLight')), 'light'),
-    `Light makes "${light}", which lights the picture`);
+  const lightPos = light ? /-pos \{([^}]*)\}/.exec(light)[1].split(' ').map(Number) : [NaN, NaN, NaN];
+  const lightOff = Math.max(...lightPos.map((v, c) => Math.abs(v - wantLight.p[c])));
+  check(!!light && lightOff < 2e-3 + wantLight.pixel && await waitFor(() => page.evaluate(() => window.asgard.graphical.sceneLights.children.some((l) => l.type === 'PointLight')), 'light'),
+    `Light makes "${light}" where the click meets the plane (${wantLight.p.map((v) => v.toFixed(3)).join(' ')}), which lights the picture`);
+  const viewDir = await page.evaluate(() => { const c = window.asgard.graphical.camera; return c.getWorldDirection(c.position.clone()).toArray(); });
+  await page.click('#create-sun');
+  const sun = await created(/^lightsource -type directional -pos \{[^}]*\} -dir \{[^}]*\}$/);
+  const sunDir = sun ? /-dir \{([^}]*)\}/.exec(sun)[1].split(' ').map(Number) : [NaN, NaN, NaN];
+  check(sunDir.every((v, c) => Math.abs(v - viewDir[c]) < 6e-4), `Sun makes "${sun}": along the view (${viewDir.map((v) => v.toFixed(3)).join(' ')})`);
+  await page.click('#undo');
+  check(await waitFor(async () => !(await lines()).some((l) => l.includes('-type directional')), 'the sun undone'), 'and Undo takes the sun away again');
   await page.click('#create-trajectory');
   const traj = await created(/^trajectory trajectory1 -points /);
   check(/^trajectory trajectory1 -points \{\{0 0 -2 0\} \{2 [\d.]+ -2 0\}\}$/.test(traj || ''), `Trajectory makes "${traj}" from the brick's start over the simulated time`);

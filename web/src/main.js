@@ -214,9 +214,22 @@ function setupCreateMenu() {
     if (g().selected) create(`torque -body ${g().selected} -x 0 -y 0 -z 1`);
   };
   const size = () => Math.max(1, g().radius);
+  // A point light placed by a click (seed 4.1), in the plane through the
+  // view's centre facing the camera; a directional one along the view.
   document.getElementById('create-light').onclick = () => {
-    const c = g().viewCentre();
-    create(`lightsource -type point -pos ${literal([c[0], c[1] + size(), c[2] + size()])}`);
+    g().startPick({
+      count: 1,
+      space: g().controls.target.clone(),
+      prompts: ['Light: click where the point light goes, in the plane through the view\'s centre (Esc cancels)'],
+      done: ([p]) => create(`lightsource -type point -pos ${literal(p.point)}`),
+    });
+  };
+  // (Its -pos, which a directional light does not use, puts its handle
+  // in sight: back from the view's centre, against the light.)
+  document.getElementById('create-sun').onclick = () => {
+    const d = g().camera.getWorldDirection(g().camera.position.clone());
+    const at = g().controls.target.clone().addScaledVector(d, -size() / 2);
+    create(`lightsource -type directional -pos ${literal(at.toArray())} -dir ${literal(d.toArray())}`);
   };
   document.getElementById('create-view').onclick = () => {
     // The free camera as asgard render's view options (export.js), the
