@@ -102,17 +102,9 @@ HermiteWeights HermiteAt(double s, double h) {
 }
 
 double Waveform::Interpolate(int i, double t, Side side, bool rate) const {
-  const int k = Locate(t, side);
-  const double* at = rate ? f(k) : x(k);
-  if (k + 1 >= size() || times_[k + 1] == times_[k] || t == times_[k]) return at[i];
-  if (t == times_[k + 1]) return (rate ? f(k + 1) : x(k + 1))[i];
-  const double h = times_[k + 1] - times_[k];
-  const HermiteWeights w = HermiteAt((t - times_[k]) / h, h);
-  if (rate)
-    return w.d00 * x(k)[i] + w.d10 * f(k)[i] + w.d01 * x(k + 1)[i] + w.d11 * f(k + 1)[i] +
-           w.db * bubble(k + 1)[i];
-  return w.h00 * x(k)[i] + w.h10 * f(k)[i] + w.h01 * x(k + 1)[i] + w.h11 * f(k + 1)[i] +
-         w.hb * bubble(k + 1)[i];
+  double out;
+  Interpolate(&i, 1, t, side, rate, &out);
+  return out;
 }
 
 double Waveform::Value(int i, double t, Side side) const { return Interpolate(i, t, side, false); }
@@ -120,7 +112,7 @@ double Waveform::Value(int i, double t, Side side) const { return Interpolate(i,
 void Waveform::Interpolate(const int* idx, int n, double t, Side side, bool rate,
                            double* out) const {
   const int k = Locate(t, side);
-  // At a sample, its values (as the one-variable Interpolate).
+  // At a sample, its values.
   const double* at = nullptr;
   if (k + 1 >= size() || times_[k + 1] == times_[k] || t == times_[k])
     at = rate ? f(k) : x(k);
