@@ -129,6 +129,8 @@ await browserTest(asgard, scene, 'language viewer', async ({ check, url, context
   check(await diverged(0), 'and A says it has diverged');
   const status = await two.locator('.viewer[data-viewer="0"] .diverged').textContent();
   check(await two.locator('.viewer[data-viewer="0"] .diverged').isVisible() && /diverged.*line 9/.test(status), `A's status: "${status}"`);
+  const conflictMarks = () => two.evaluate(() => [...document.querySelectorAll('.viewer[data-viewer="0"] .cm-conflict-line')].map((e) => e.dataset.conflictLine));
+  check((await conflictMarks()).join(',') === '9', `and A marks line 9 in its text (${(await conflictMarks()).join(',')})`);
   await editAndUpdate(1, '-finish 2', '-finish 2.5');
   check((await textOf(0)).includes('-finish 2.5') && (await diverged(0)), 'while diverged, changes elsewhere still reach A');
   await two.screenshot({ path: join(outDir, '5-diverged.png') });
@@ -141,5 +143,6 @@ await browserTest(asgard, scene, 'language viewer', async ({ check, url, context
   await two.click('.viewer[data-viewer="0"] .take-session');
   check((await textOf(0)) === (await session()) && !(await diverged(0)) && !(await two.locator('.viewer[data-viewer="0"] .diverged').isVisible()),
     '"Take the session\'s text" shows the session\'s text and ends the divergence');
+  check((await conflictMarks()).length === 0, 'and the conflict mark is gone');
   check(errors2.length === 0, `no script errors in the two-viewer page ${errors2.join('; ')}`);
 });

@@ -10,7 +10,8 @@
 // and each one closes its group).  A session change that arrives while this
 // viewer holds unsent typing is merged into it (merge.js): where the two do
 // not overlap both survive; where they do, the typing is kept and the viewer
-// says it has diverged, with a button that takes the session's text.
+// says it has diverged (in its status and with the conflicting lines
+// marked), with a button that takes the session's text.
 // Errors are marked at
 // their spans and listed under the text.  Graphically editable literals are
 // highlighted, read-only ones say why on hover, long point lists are elided
@@ -26,16 +27,25 @@ import { mergeSession } from './merge.js';
 // Marks the transactions that carry the session's changes (not typing).
 const fromSession = Annotation.define();
 
-const setErrorLines = StateEffect.define();
-const errorLines = StateField.define({
-  create: () => Decoration.none,
-  update(deco, tr) {
-    deco = deco.map(tr.changes);
-    for (const e of tr.effects) if (e.is(setErrorLines)) deco = e.value;
-    return deco;
-  },
-  provide: (f) => EditorView.decorations.from(f),
-});
+// Line decorations replaced as a whole by an effect and moved with the
+// text's changes: the error lines, and the lines where a diverged viewer's
+// typing overlaps a change made elsewhere (the session's text differs
+// under them).
+function lineMarks() {
+  const set = StateEffect.define();
+  const field = StateField.define({
+    create: () => Decoration.none,
+    update(deco, tr) {
+      deco = deco.map(tr.changes);
+      for (const e of tr.effects) if (e.is(set)) deco = e.value;
+      return deco;
+    },
+    provide: (f) => EditorView.decorations.from(f),
+  });
+  return [set, field];
+}
+const [setErrorLines, errorLines] = lineMarks();
+const [setConflictLines, conflictLines] = lineMarks();
 
 export class LanguageViewer {
   constructor(parent, index, actions) {
@@ -100,7 +110,7 @@ export class LanguageViewer {
       }
       if (u.docChanged && this.text() === this.base) this.pending = ChangeSet.empty(this.base.length);
     });
-    this.view = new EditorView({ doc: '', extensions: [history, basicSetup, typing, EditorView.lineWrapping, errorLines, this.literals, literalTooltips(this.literals)], parent: root });
+    this.view = new EditorView({ doc: '', extensions: [history, basicSetup, typing, EditorView.lineWrapping, errorLines, conflictLines, this.literals, literalTooltips(this.literals)], parent: root });
     root.appendChild(this.errors);
     this.root = root;
   }
@@ -186,10 +196,21 @@ export class LanguageViewer {
     const on = this.diverged();
     this.root.dataset.diverged = on ? '1' : '';
     this.divergence.style.display = on ? '' : 'none';
-    if (!on) return;
+    if (!on) {
+      if (this.view.state.field(conflictLines).size) this.view.dispatch({ effects: setConflictLines.of(Decoration.none) });
+      return;
+    }
     const doc = this.view.state.doc;
     const at = [...new Set(conflicts.map((c) => doc.lineAt(Math.min(this.pending.mapPos(c.from), doc.length)).number))];
-    if (at.length) this.conflictLines = at;
+    if (at.length) {
+      this.conflictLines = at;
+      // Marked in the text too (they move with later changes).
+      const marks = at.sort((x, y) => x - y).map((n) => Decoration.line({
+        class: 'cm-conflict-line',
+        attributes: { 'data-conflict-line': String(n), title: 'your typing here overlaps a change made elsewhere: Update sends yours, "Take the session\'s text" drops it' },
+      }).range(doc.line(n).from));
+      this.view.dispatch({ effects: setConflictLines.of(Decoration.set(marks)) });
+    }
     const where = this.conflictLines && this.conflictLines.length ? ` (line ${this.conflictLines.join(', ')})` : '';
     this.divergenceText.textContent = `⚠ diverged: your typing overlaps a change made elsewhere${where}; Update sends yours`;
   }
