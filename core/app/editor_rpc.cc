@@ -261,13 +261,19 @@ json Poses(const render::SceneSampler& sampler, const session::Session* session)
   const std::vector<double> times = sampler.FrameTimes();
   json names = json::array();
   for (const auto& b : sampler.bodies()) names.push_back(b.name);
-  json frames = json::array(), forces = json::array(), velocities = json::array();
+  json frames = json::array(), forces = json::array(), velocities = json::array(),
+       torques = json::array();
+  auto vectors = [](const std::vector<std::optional<Eigen::Vector3d>>& v) {
+    json values = json::array();
+    for (const auto& f : v) values.push_back(f ? Vec(*f) : json());
+    return values;
+  };
   for (double t : times) {
     frames.push_back(PoseFrame(sampler, t));
     velocities.push_back(VelocityFrame(sampler, t));
-    json values = json::array();
-    for (const auto& f : sampler.ForceValues(t)) values.push_back(f ? Vec(*f) : json());
-    forces.push_back(std::move(values));
+    forces.push_back(vectors(sampler.ForceValues(t)));
+    const auto tv = sampler.TorqueValues(t);
+    if (!tv.empty()) torques.push_back(vectors(tv));  // only a scene with torques
   }
   json rounded = json::array();
   for (double t : times) rounded.push_back(Round(t));
@@ -303,6 +309,7 @@ json Poses(const render::SceneSampler& sampler, const session::Session* session)
                  {"tan_half_fov", std::tan(camera.fov_y / 2)}}},
                {"views", session ? Views(sampler, *session, times) : json::array()},
                {"camera", CameraJson(render::MakeCamera(*sampler.SceneView(), 1, 1))}};
+  if (!torques.empty()) data["torques"] = std::move(torques);
   AddOverlays(data, sampler, times, framing.radius);
   return data;
 }

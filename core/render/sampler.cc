@@ -104,8 +104,9 @@ struct SceneSampler::Evaluator {
   std::vector<physics::TrajectoryCurve> curves;
   std::map<std::string, int, std::less<>> curve_index;
   std::vector<expr::NodeId> outputs;
-  std::vector<int> link_first;   // per link: first output index, or -1
-  std::vector<int> force_first;  // per force: first output index, or -1
+  std::vector<int> link_first;    // per link: first output index, or -1
+  std::vector<int> force_first;   // per force: first output index, or -1
+  std::vector<int> torque_first;  // per torque: first output index, or -1
   std::optional<expr::Tape> tape;
   expr::ExternFn externs;
 
@@ -196,6 +197,9 @@ SceneSampler::SceneSampler(const scene::Scene& scene, const physics::EquationSys
     const double factor = f.gravitational && b >= 0 ? eq.bodies[b].mass : 1.0;
     ev.force_first.push_back(b >= 0 ? ev.AddTriple(f.components, eq, factor) : -1);
   }
+  for (const auto& tq : scene_.torques)
+    ev.torque_first.push_back(eq.FindBody(tq.body) >= 0 ? ev.AddTriple(tq.components, eq, 1.0)
+                                                        : -1);
   if (!ev.outputs.empty()) ev.tape = expr::Tape::Compile(ev.pool, ev.outputs);
   ev.externs = [curves = &ev.curves](int fn, int order, double t) {
     return (*curves)[physics::CurveOfFunction(fn)].Evaluate(physics::AxisOfFunction(fn), order, t);
@@ -486,19 +490,28 @@ std::vector<Segment> SceneSampler::LinkSegments(double t, const std::vector<Pose
   return segs;
 }
 
-std::vector<std::optional<Eigen::Vector3d>> SceneSampler::ForceValues(double t) const {
-  std::vector<std::optional<Eigen::Vector3d>> values(scene_.forces.size());
+// The vectors whose first outputs are `first` (−1: none), at time t.
+std::vector<std::optional<Eigen::Vector3d>> SceneSampler::VectorValues(
+    const std::vector<int>& first, double t) const {
+  std::vector<std::optional<Eigen::Vector3d>> values(first.size());
   if (!eval_->tape) return values;
   const auto x = StateValues(equations_, simulation_, t, bodies_.size());
   std::vector<double> out(eval_->outputs.size());
   eval_->tape->Evaluate(t, x.data(), out.data(), &eval_->externs);
-  for (size_t i = 0; i < scene_.forces.size(); ++i) {
-    const int first = eval_->force_first[i];
-    if (equations_.FindBody(scene_.forces[i].body) < 0 || first < 0) continue;
-    const Eigen::Vector3d v(out[first], out[first + 1], out[first + 2]);
+  for (size_t i = 0; i < first.size(); ++i) {
+    if (first[i] < 0) continue;
+    const Eigen::Vector3d v(out[first[i]], out[first[i] + 1], out[first[i] + 2]);
     if (v.allFinite()) values[i] = v;
   }
   return values;
+}
+
+std::vector<std::optional<Eigen::Vector3d>> SceneSampler::ForceValues(double t) const {
+  return VectorValues(eval_->force_first, t);
+}
+
+std::vector<std::optional<Eigen::Vector3d>> SceneSampler::TorqueValues(double t) const {
+  return VectorValues(eval_->torque_first, t);
 }
 
 std::vector<Segment> SceneSampler::ForceVectors(double t, const std::vector<Pose>& poses) const {

@@ -114,12 +114,17 @@ class SceneSampler {
   // -gravitational 1), in the order of scene.forces; nullopt where it cannot
   // be evaluated here.
   std::vector<std::optional<Eigen::Vector3d>> ForceValues(double t) const;
+  // Each scene torque's world vector at time t, in the order of
+  // scene.torques; nullopt where it cannot be evaluated here.
+  std::vector<std::optional<Eigen::Vector3d>> TorqueValues(double t) const;
   // Path of each moving body's centre of mass over `times`.
   std::vector<std::vector<Eigen::Vector3d>> Paths(const std::vector<double>& times) const;
 
  private:
   friend class ViewMotion;
   struct Evaluator;
+  std::vector<std::optional<Eigen::Vector3d>> VectorValues(const std::vector<int>& first,
+                                                           double t) const;
   const scene::Scene& scene_;
   const physics::EquationSystem& equations_;
   const solver::Simulation& simulation_;

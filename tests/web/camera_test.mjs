@@ -183,6 +183,19 @@ await browserTest(asgard, scene, 'camera', async ({ check, url, context }) => {
     return { off: h.mesh.position.clone().sub(c).sub(c.clone().set(0, 0, 2 * h.scale)).length(), shown: h.arrow.visible };
   });
   check(tip.off < 1e-9 && tip.shown, 'the torque\'s arrow starts at the brick\'s centre and ends at centre + scale × {0 0 2}');
+  // The read-only torque (-z 0.5 sin(t) × mass) shows the core's value at
+  // the frame shown: at t = 1, centre + scale × {0 0 0.5 sin(1) × 2}.
+  const ro = await page.evaluate(() => {
+    const g = window.asgard.graphical;
+    g.seek(1);
+    const h = g.handles.find((x) => x.element === 'torque#2'), c = g.bodies.get('brick').group.position.clone();
+    const want = 0.5 * Math.sin(g.poses.times[g.frame]) * 2;  // the brick: a 2 × 1 × 1 hull at density 1, mass 2
+    const off = h.mesh.position.clone().sub(c).sub(c.clone().set(0, 0, want * h.scale)).length();
+    g.seek(0);
+    return { off, want, scale: h.scale };
+  });
+  check(ro.off < 1e-3 * ro.scale,
+    `the read-only torque's arrow is its evaluated value at the frame shown (z = ${ro.want.toFixed(4)}; off by ${ro.off.toExponential(1)})`);
   const spin = () => page.evaluate(() => { const g = window.asgard.graphical; return g.bodyQuaternion('brick', g.poses.times.length - 1); });
   const spinBefore = await spin();
   const t0 = torques.find((h) => h.element === 'torque#0');

@@ -18,7 +18,8 @@ view side -rot {0 1.5707963267948966 0}
 lightsource key -type point -pos {0 6 8} -color red -intensity 1
 
 # Torques: a literal one, one written as a force with -torque 1, and one
-# whose -z is an expression (read-only in the viewer).
+# whose -z is an expression of time (read-only in the viewer, drawn at its
+# evaluated value).
 torque -body brick -x 0 -y 0 -z 2
 force -torque 1 -body runner -x 1 -y 0 -z 0
-torque -body brick -x 0 -y 0 -z {0 * brick.mass}
+torque -body brick -x 0 -y 0 -z {0.5 * sin(t) * brick.mass}

@@ -382,8 +382,8 @@ export class GraphicalViewer {
         scale: this.scales[kind], note: gravitational ? ' (× mass)' : '', anchor: base,
         where: () => {
           if (h.editable) return arrowTip(h, base(), kind === 'force' ? new THREE.Vector3(0, -1, 0) : new THREE.Vector3(0, 0, 1));
-          // Read-only: a force's value at the shown time, when known.
-          const v = kind === 'force' ? this.forceAt(index) : null;
+          // Read-only: its value at the shown time, when known.
+          const v = kind === 'force' ? this.forceAt(index) : this.torqueAt(index);
           h.stubbed = !v;
           return v ? base().add(new THREE.Vector3(...v).multiplyScalar(h.scale)) : base();
         },
@@ -654,9 +654,12 @@ export class GraphicalViewer {
 
   bodyHandleOf(element, param) { return this.handles.find((h) => h.element === element && h.param === param) || {}; }
 
-  // A force's evaluated vector at the shown frame (read-only forces).
-  forceAt(i) {
-    const f = this.poses && this.poses.forces && this.poses.forces[this.frame];
+  // A force's or torque's evaluated vector at the shown frame (read-only
+  // ones), when the core could evaluate it.
+  forceAt(i) { return this.evaluatedAt('forces', i); }
+  torqueAt(i) { return this.evaluatedAt('torques', i); }
+  evaluatedAt(list, i) {
+    const f = this.poses && this.poses[list] && this.poses[list][this.frame];
     return f && f[i] ? f[i] : null;
   }
 
