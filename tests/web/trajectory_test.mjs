@@ -297,8 +297,7 @@ await browserTest(asgard, scene, 'trajectory', async ({ check, url, context }) =
       const g = window.asgard.graphical;
       g.seek(1.7);
       const line = g.paths.children.find((l) => l.userData.element === el);
-      const hs = line.userData.knots, curve = new (g.trajectoryCurveClass())(hs.map((h) => [h.t, ...h.value]));
-      const through = line.userData.place(1.7, curve.value(1.7));
+      const through = line.userData.place(1.7, g.trajectoryValue(el, 1.7));
       const right = through.clone().set(1, 0, 0).applyQuaternion(g.camera.quaternion);
       const up = through.clone().set(0, 1, 0).applyQuaternion(g.camera.quaternion);
       const w = through.clone().addScaledVector(right, 0.8).addScaledVector(up, 0.5);

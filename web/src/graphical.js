@@ -519,7 +519,9 @@ export class GraphicalViewer {
   // -x -y -z (`force -body B -x T.x -y T.y -z T.z`, as the Create menu
   // writes it).  Drawn as that force's arrows from B, at the forces' scale.
   forceTrajectories() {
-    const ix = this.index, out = new Map();
+    const ix = this.index;
+    if (this.forcedOf === ix) return this.forced;  // once per set of parameters
+    const out = new Map();
     const free = new Set(ix.ofKind('trajectory').filter((t) => !ix.text(t, 'body')));
     for (const element of ix.ofKind('force')) {
       const words = ['x', 'y', 'z'].map((c) => (ix.text(element, c) || '').trim());
@@ -528,6 +530,8 @@ export class GraphicalViewer {
           ix.text(element, 'torque', '0') === '0')
         out.set(m[1], ix.text(element, 'body'));
     }
+    this.forcedOf = ix;
+    this.forced = out;
     return out;
   }
 
@@ -537,8 +541,7 @@ export class GraphicalViewer {
     const b = name ? this.bodies.get(name) : null;
     if (!b) return new THREE.Vector3();
     if (!this.poses || b.index < 0) return this.start(name).p.clone();
-    const { times, poses, velocities } = this.poses;
-    const k = 7 * b.index;
+    const { times } = this.poses;
     t = Math.min(Math.max(t, times[0]), times[times.length - 1]);
     let lo = 0, hi = times.length - 1;
     while (hi - lo > 1) {
@@ -546,13 +549,9 @@ export class GraphicalViewer {
       if (times[mid] <= t) lo = mid; else hi = mid;
     }
     const s = hi > lo && times[hi] > times[lo] ? (t - times[lo]) / (times[hi] - times[lo]) : 0;
-    if (velocities && hi > lo) {
-      const o = this.scratchPose || (this.scratchPose = new THREE.Object3D());
-      hermitePose(poses[lo], velocities[lo], poses[hi], velocities[hi], times[hi] - times[lo], s, o, k, 6 * b.index);
-      return o.position.clone();
-    }
-    const a = poses[lo], c = poses[hi];
-    return new THREE.Vector3(a[k] + s * (c[k] - a[k]), a[k + 1] + s * (c[k + 1] - a[k + 1]), a[k + 2] + s * (c[k + 2] - a[k + 2]));
+    const o = this.scratchPose || (this.scratchPose = new THREE.Object3D());
+    this.poseBetween(b, lo, hi, s, o);
+    return o.position.clone();
   }
 
   // A `view` element (seed 4.1.7) as asgard render places its camera: the
@@ -831,21 +830,7 @@ export class GraphicalViewer {
     const j = Math.min(i + 1, times.length - 1);
     const s = j > i && times[j] > times[i] ? (t - times[i]) / (times[j] - times[i]) : 0;
     this.frame = s > 0.5 ? j : i;
-    const qa = this.qa || (this.qa = new THREE.Quaternion()), qb = this.qb || (this.qb = new THREE.Quaternion());
-    const vel = this.poses.velocities;
-    const a = poses[i], c = poses[j];
-    for (const b of this.bodies.values()) {
-      if (b.index < 0) continue;
-      const k = 7 * b.index;
-      if (vel && j > i) {
-        hermitePose(a, vel[i], c, vel[j], times[j] - times[i], s, b.group, k, 6 * b.index);
-        continue;
-      }
-      b.group.position.set(a[k] + s * (c[k] - a[k]), a[k + 1] + s * (c[k + 1] - a[k + 1]), a[k + 2] + s * (c[k + 2] - a[k + 2]));
-      qa.set(a[k + 3], a[k + 4], a[k + 5], a[k + 6]);
-      qb.set(c[k + 3], c[k + 4], c[k + 5], c[k + 6]);
-      b.group.quaternion.slerpQuaternions(qa, qb, s);
-    }
+    for (const b of this.bodies.values()) if (b.index >= 0) this.poseBetween(b, i, j, s, b.group);
     if (this.viewName) this.placeViewCamera(i, j, s);
     // While a body's handle is dragged the body sits at its new start.
     if (this.dragging && t === times[0] && this.bodies.has(this.dragging.element)) {
@@ -860,6 +845,22 @@ export class GraphicalViewer {
     if (this.ui.clock.textContent !== clock) this.ui.clock.textContent = clock;
     if (this.ui.time) this.ui.time(t);
     if (frame) this.render(); else this.draw();
+  }
+
+  // Body b's pose at fraction s from frame i to frame j, set on `object`:
+  // Hermite from the streamed velocities, else linear and slerp.
+  poseBetween(b, i, j, s, object) {
+    const { times, poses, velocities: vel } = this.poses;
+    const a = poses[i], c = poses[j], k = 7 * b.index;
+    if (vel && j > i) {
+      hermitePose(a, vel[i], c, vel[j], times[j] - times[i], s, object, k, 6 * b.index);
+      return;
+    }
+    const qa = this.qa || (this.qa = new THREE.Quaternion()), qb = this.qb || (this.qb = new THREE.Quaternion());
+    object.position.set(a[k] + s * (c[k] - a[k]), a[k + 1] + s * (c[k + 1] - a[k + 1]), a[k + 2] + s * (c[k + 2] - a[k + 2]));
+    qa.set(a[k + 3], a[k + 4], a[k + 5], a[k + 6]);
+    qb.set(c[k + 3], c[k + 4], c[k + 5], c[k + 6]);
+    object.quaternion.slerpQuaternions(qa, qb, s);
   }
 
   play() {
@@ -1093,26 +1094,29 @@ export class GraphicalViewer {
     const m = this.mode;
     const trajectory = !hit && m.trajectory && m.picks.length ? this.pickTrajectory(ev) : null;
     if (m.space) {
-      // A point in space, bodies or not: in the plane through m.space
-      // facing the camera.
-      this.raycaster.setFromCamera(this.pointer(ev), this.camera);
-      const plane = new THREE.Plane().setFromNormalAndCoplanarPoint(this.camera.getWorldDirection(new THREE.Vector3()), m.space);
-      const p = this.raycaster.ray.intersectPlane(plane, new THREE.Vector3());
+      // A point in space, bodies or not.
+      const p = this.pointInPlane(ev, m.space);
       if (!p) return;
       m.picks.push({ name: null, world: p, local: null, point: p.toArray() });
     } else if (hit) m.picks.push(hit);
     else if (trajectory) m.picks.push({ name: null, trajectory });
     else if (m.point && m.picks.length) {
       // Off every body: a point in the plane through the view's centre.
-      this.raycaster.setFromCamera(this.pointer(ev), this.camera);
-      const plane = new THREE.Plane().setFromNormalAndCoplanarPoint(this.camera.getWorldDirection(new THREE.Vector3()), this.controls.target);
-      const p = this.raycaster.ray.intersectPlane(plane, new THREE.Vector3());
+      const p = this.pointInPlane(ev, this.controls.target);
       if (!p) return;
       m.picks.push({ name: null, world: p, local: null, point: [p.x, p.y, p.z].map((v) => round(v)) });
     } else return;
     if (m.picks.length < m.count) { this.ui.prompt(m.prompts[m.picks.length]); return; }
     this.cancelPick();
     m.done(m.picks);
+  }
+
+  // Where the pointer's ray meets the plane through `through` facing the
+  // camera, or null.
+  pointInPlane(ev, through) {
+    this.raycaster.setFromCamera(this.pointer(ev), this.camera);
+    const plane = new THREE.Plane().setFromNormalAndCoplanarPoint(this.camera.getWorldDirection(new THREE.Vector3()), through);
+    return this.raycaster.ray.intersectPlane(plane, new THREE.Vector3());
   }
 
   // The trajectory under the pointer (one of its control points, else its
@@ -1231,7 +1235,6 @@ export class GraphicalViewer {
   trajectoryPaths() {
     return Object.fromEntries(this.paths.children.map((l) => [l.userData.element, this.pathPoints(l)]));
   }
-  trajectoryCurveClass() { return TrajectoryCurve; }
   trajectoryValue(element, t) {
     const line = this.paths.children.find((l) => l.userData.element === element);
     return line && line.userData.knots.length ? new TrajectoryCurve(line.userData.knots.map((h) => [h.t, ...h.value])).value(t) : null;

@@ -237,11 +237,16 @@ export class TrajectoryEditor {
     const t = round(this.viewer.t);
     if (knots.some((h) => Math.abs(h.t - t) < MIN_GAP)) { this.info.textContent = `a point is already at t = ${t}`; return; }
     const curve = new TrajectoryCurve(knots.map((h) => [h.t, ...h.value]));
-    const list = knots.map((h) => [h.t, ...h.value]);
-    list.push([t, ...curve.value(t).map((v) => round(v))]);
+    this.insertKnot(this.element, t, curve.value(t));
+  }
+
+  // The knots with [t, ...value] added (chosen), sent as a new list.
+  insertKnot(element, t, value) {
+    const list = this.knots().map((h) => [h.t, ...h.value]);
+    list.push([t, ...value.map((v) => round(v))]);
     list.sort((a, b) => a[0] - b[0]);
     this.selected = list.findIndex((k) => k[0] === t);
-    this.end(this.element, list.flat());
+    this.end(element, list.flat());
   }
 
   // A control point at the shown time where the user clicks in the viewer
@@ -260,12 +265,8 @@ export class TrajectoryEditor {
       space: line.userData.place(t, curve.value(t)),
       prompts: [`Click where ${element}'s point at t = ${t} goes (Esc cancels)`],
       done: ([p]) => {
-        const list = this.knots().map((h) => [h.t, ...h.value]);
-        if (list.some((k) => Math.abs(k[0] - t) < MIN_GAP)) return;
-        list.push([t, ...line.userData.unplace(t, p.world).map((v) => round(v))]);
-        list.sort((a, b) => a[0] - b[0]);
-        this.selected = list.findIndex((k) => k[0] === t);
-        this.end(element, list.flat());
+        if (this.element !== element || this.knots().some((h) => Math.abs(h.t - t) < MIN_GAP)) return;
+        this.insertKnot(element, t, line.userData.unplace(t, p.world));
       },
     });
   }
