@@ -552,6 +552,41 @@ int RunVerb(Host& h) {
   return Usage("unknown verb '" + o.verb + "'");
 }
 
+// The document view's pages: laid out and drawn as `convert` draws the PDF's
+// (each region with its poster; the live rendition lies over it), at twice
+// the CSS pixel density.  Empty with `error` when a page cannot be drawn.
+std::vector<serve::HostPage> ServePages(HostDocument& doc, std::string* error) {
+  constexpr double kCssPx = 96.0 / 72.0;  // CSS pixels per point
+  const PageStyle style;
+  std::vector<RegionContent> regions(doc.items().size());
+  for (size_t k = 0; k < regions.size(); ++k) {
+    const Embedded& item = doc.items()[k];
+    regions[k].picture = item.poster;
+    // A live rendition's toolbar says its status; one without says why.
+    const bool live = item.medium && item.medium->node_rpc();
+    regions[k].caption = "Animation " + std::to_string(item.index) +
+                         (live || item.message.empty() ? "" : " · " + item.message);
+  }
+  std::vector<serve::HostPage> out;
+  for (const Page& page : Paginate(Blocks(doc), doc, style)) {
+    serve::HostPage p;
+    p.png = PagePng(page, regions, 2 * 96.0, error, style);
+    if (p.png.empty()) return {};
+    p.width = style.width * kCssPx;
+    p.height = style.height * kCssPx;
+    for (const Placed& b : page.items) {
+      if (b.block.kind != Block::kEmbedded) {
+        p.text += (b.block.label.empty() ? "" : b.block.label + ": ") + b.block.text + "\n";
+        continue;
+      }
+      const Embedded& item = doc.items()[static_cast<size_t>(b.block.item)];
+      p.regions.push_back({item.path, b.x * kCssPx, b.y * kCssPx, b.w * kCssPx, b.h * kCssPx});
+    }
+    out.push_back(std::move(p));
+  }
+  return out;
+}
+
 // dochost serve: the editor server (web/server/launch.h).
 int ServeCommand(const std::vector<std::string>& args) {
   std::string file, error;
@@ -576,7 +611,12 @@ int ServeCommand(const std::vector<std::string>& args) {
   std::vector<std::string> warnings;
   HostDocument doc(std::move(*loaded.document), registry, ho, &warnings);
   for (const auto& w : warnings) std::cerr << "dochost serve: " << w << "\n";
-  return serve::ServeDocument(file, lo, AttachTo(doc));
+  std::string page_error;
+  std::vector<serve::HostPage> pages = ServePages(doc, &page_error);
+  if (pages.empty())
+    std::cerr << "dochost serve: the pages cannot be drawn (" << page_error
+              << "); the document view shows the text as paragraphs\n";
+  return serve::ServeDocument(file, lo, AttachTo(doc), std::move(pages));
 }
 
 int Main(const std::vector<std::string>& args) {

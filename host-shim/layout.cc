@@ -403,30 +403,35 @@ bool WritePdf(const std::string& path, const std::vector<Page>& pages,
   return document::WriteFileAtomic(path, bytes, error);
 }
 
-bool WritePngPages(const std::string& path, const std::vector<Page>& pages,
-                   const std::vector<RegionContent>& regions, double dpi,
-                   std::vector<std::string>* written, std::string* error, const PageStyle& style) {
+std::string PagePng(const Page& page, const std::vector<RegionContent>& regions, double dpi,
+                    std::string* error, const PageStyle& style) {
   const double k = dpi / 72.0;
   const int w = static_cast<int>(std::lround(style.width * k));
   const int h = static_cast<int>(std::lround(style.height * k));
+  cairo_surface_t* s = cairo_image_surface_create(CAIRO_FORMAT_RGB24, w, h);
+  cairo_t* cr = cairo_create(s);
+  cairo_scale(cr, k, k);
+  DrawPage(cr, page, regions, style);
+  cairo_destroy(cr);
+  std::string bytes;
+  const cairo_status_t st = cairo_surface_write_to_png_stream(s, Append, &bytes);
+  cairo_surface_destroy(s);
+  if (st == CAIRO_STATUS_SUCCESS) return bytes;
+  if (error) *error = std::string("PNG: ") + cairo_status_to_string(st);
+  return {};
+}
+
+bool WritePngPages(const std::string& path, const std::vector<Page>& pages,
+                   const std::vector<RegionContent>& regions, double dpi,
+                   std::vector<std::string>* written, std::string* error, const PageStyle& style) {
   for (size_t i = 0; i < pages.size(); ++i) {
     std::string out = path;
     if (i > 0) {
       const size_t dot = path.rfind('.');
       out = path.substr(0, dot) + "-" + std::to_string(i + 1) + path.substr(dot);
     }
-    cairo_surface_t* s = cairo_image_surface_create(CAIRO_FORMAT_RGB24, w, h);
-    cairo_t* cr = cairo_create(s);
-    cairo_scale(cr, k, k);
-    DrawPage(cr, pages[i], regions, style);
-    cairo_destroy(cr);
-    std::string bytes;
-    const cairo_status_t st = cairo_surface_write_to_png_stream(s, Append, &bytes);
-    cairo_surface_destroy(s);
-    if (st != CAIRO_STATUS_SUCCESS) {
-      if (error) *error = std::string("PNG: ") + cairo_status_to_string(st);
-      return false;
-    }
+    const std::string bytes = PagePng(pages[i], regions, dpi, error, style);
+    if (bytes.empty()) return false;
     if (!document::WriteFileAtomic(out, bytes, error)) return false;
     if (written) written->push_back(out);
   }

@@ -66,6 +66,11 @@ bool WritePngPages(const std::string& path, const std::vector<Page>& pages,
                    std::vector<std::string>* written, std::string* error,
                    const PageStyle& style = {});
 
+// One page as a PNG at `dpi`: as WritePngPages draws it (empty with
+// `error` on failure).
+std::string PagePng(const Page& page, const std::vector<RegionContent>& regions, double dpi,
+                    std::string* error, const PageStyle& style = {});
+
 // The page boxes as JSON (for tests and tools): pages, blocks, regions.
 std::string LayoutJson(const std::vector<Page>& pages, const PageStyle& style = {});
 

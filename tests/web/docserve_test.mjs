@@ -7,7 +7,8 @@
 // killed the next action starts one new slave that has the edited text.
 // Node (its WebSocket, Node 20's --experimental-websocket); then, where
 // Chromium is, the document view's toolbar in the browser.
-import { existsSync, writeFileSync } from 'node:fs';
+import { spawnSync } from 'node:child_process';
+import { existsSync, readFileSync, writeFileSync } from 'node:fs';
 import { join } from 'node:path';
 import { checker, coreChildren, launchBrowser, startStudio, sleep, waitFor, wsView } from './common.mjs';
 
@@ -28,8 +29,23 @@ const view = () => wsView(port);
 
 try {
   const page = await (await fetch(url)).text();
-  check(page.includes('<figure class="rendition" data-a="0">') && page.includes('class="recompute"'),
+  check(/<figure class="rendition placed" style="left:\d+px;top:\d+px" data-a="0">/.test(page) && page.includes('class="recompute"'),
     'the document view shows the animation as a rendition with the host\'s toolbar');
+  // The host's own pages: as `dochost convert` lays the PDF out (its
+  // --layout), each page a picture the host drew, the rendition over the
+  // animation's region.
+  const layoutFile = join(outDir, 'memo-layout.json');
+  const converted = spawnSync(dochost, ['convert', doc, '-o', join(outDir, 'memo.pdf'), '--layout', layoutFile, '--quiet']);
+  check(converted.status === 0, `dochost convert writes the PDF and its layout (${converted.status}: ${converted.stderr})`);
+  const layout = JSON.parse(readFileSync(layoutFile, 'utf8'));
+  const pageCount = (page.match(/<div class="page" data-page=/g) || []).length;
+  check(pageCount === layout.pages.length, `the document view has the PDF's ${layout.pages.length} page(s) (${pageCount})`);
+  const picture = await fetch(`${url}page?n=0`);
+  check(picture.status === 200 && picture.headers.get('content-type') === 'image/png' &&
+    Buffer.from(await picture.arrayBuffer()).subarray(1, 4).toString() === 'PNG', 'GET /page?n=0 is the first page\'s picture');
+  check((await fetch(`${url}page?n=${layout.pages.length}`)).status === 404 && (await fetch(`${url}page?n=x`)).status === 404,
+    'a page the document does not have is 404');
+  const regions = layout.pages.flatMap((p, k) => p.filter((b) => b.kind === 'embedded').map((b) => ({ ...b, page: k })));
   const first = await frame(1);
   check(first.status === 200 && first.type === 'image/png' && first.live === '1',
     `GET /frame draws a live PNG (${first.status}, ${first.type}, live ${first.live}: ${first.caption})`);
@@ -137,6 +153,26 @@ try {
       const g0 = await blobOf(0, 'canvas'), s0 = await blobOf(0, frameUrl(0));
       check(agree(g0, s0), `at t = 0 the WebGL rendition draws the bodies where the slave's picture has them (${JSON.stringify(g0)} vs ${JSON.stringify(s0)})`);
       await page.screenshot({ path: join(outDir, '1-document-view.png') });
+      // The figure lies on the region of the PDF's layout (points → CSS
+      // pixels, 96/72), within a pixel; the page's picture has the text.
+      const placed = await page.evaluate(() => {
+        const f = document.querySelector('figure.rendition'), p = f.closest('.page');
+        const pr = p.getBoundingClientRect(), fr = f.querySelector('canvas, img').getBoundingClientRect();
+        const pic = p.querySelector('.page-picture');
+        const c = document.createElement('canvas');
+        c.width = pic.naturalWidth; c.height = pic.naturalHeight;
+        c.getContext('2d').drawImage(pic, 0, 0);
+        const d = c.getContext('2d').getImageData(0, 0, c.width, c.height).data;
+        let dark = 0;  // text-coloured pixels above the figure
+        const above = Math.floor((fr.top - pr.top) * c.height / pr.height);
+        for (let o = 0; o < 4 * c.width * above; o += 4) if (d[o] < 96 && d[o + 1] < 96 && d[o + 2] < 96) ++dark;
+        return { page: Number(p.dataset.page), x: fr.left - pr.left, y: fr.top - pr.top, w: fr.width, h: fr.height,
+          scale: c.width / pr.width, dark: dark / Math.max(1, c.width * above) };
+      });
+      const r0 = regions[0], k = 96 / 72;
+      check(!!r0 && placed.page === r0.page && [placed.x - r0.x * k, placed.y - r0.y * k, placed.w - r0.w * k, placed.h - r0.h * k].every((e) => Math.abs(e) <= 1),
+        `the rendition lies on the animation's region of the PDF's page (${JSON.stringify(placed)} vs ${JSON.stringify(r0)} pt)`);
+      check(placed.scale >= 1.9 && placed.dark > 0.005, `the page's picture has the text above the animation, at twice the page's pixels (${placed.dark.toFixed(4)} dark, ×${placed.scale.toFixed(2)})`);
       await page.locator(`${fig(0)} >> .time`).fill('1000');
       check(await waitFor(async () => (await page.textContent(`${fig(0)} >> .t`)) === 't = 3.00 s', 'the slider'), 'the slider at its end shows t = 3.00 s');
       const g3 = await blobOf(0, 'canvas'), s3 = await blobOf(0, frameUrl(3));
@@ -316,7 +352,7 @@ try {
         check(await waitFor(async () => (await selected()) === 'b2', 'the selection'), `a click on b2 selects it (${await selected()})`);
         check(await page.evaluate(`${overlay(0)}.viewer.selectionBox.visible`), 'the selected body has its box');
         await page.screenshot({ path: join(outDir, '7-selected.png'), clip: { x: 0, y: 150, width: 640, height: 330 } });
-        await page.mouse.click(target.left + 5, target.bottom - 5);
+        await page.mouse.click(target.left + 5, target.top + 5);  // the toolbar lies over the foot
         check(await waitFor(async () => (await selected()) === '', 'no selection'), 'a click off every body clears the selection');
       }
       await page.uncheck(`${fig(0)} >> .handles`);

@@ -4,6 +4,7 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <cmath>
 #include <cstdlib>
 #include <filesystem>
 #include <iostream>
@@ -133,10 +134,18 @@ struct Walk {
 // editor, another rendition.  The page's WebSocket to the animation is one
 // more view of it: a `scene` event (an edit's new motion, from any editor)
 // reaches every rendition, and all renditions of it follow one clock.
-std::string RenditionHtml(size_t i, const Animation& a) {
+// On a host page (`region`) the figure lies over the animation's region,
+// its picture the region's size and its toolbar over the picture's foot.
+std::string RenditionHtml(size_t i, const Animation& a, const PageRegion* region = nullptr) {
   const std::string n = std::to_string(i);
-  return "<figure class=\"rendition\" data-a=\"" + n + "\"><img alt=\"" + HtmlEscape(a.title) +
-         "\" width=\"360\" height=\"240\"><figcaption>"
+  auto px = [](double v) { return std::to_string(static_cast<long>(std::lround(v))); };
+  const std::string place =
+      region ? " placed\" style=\"left:" + px(region->x) + "px;top:" + px(region->y) + "px" : "";
+  const std::string size = region ? "\" width=\"" + px(region->w) + "\" height=\"" + px(region->h)
+                                  : "\" width=\"360\" height=\"240";
+  return "<figure class=\"rendition" + place + "\" data-a=\"" + n + "\"><img alt=\"" +
+         HtmlEscape(a.title) + size +
+         "\"><figcaption>"
          "<button class=\"play\">Play</button> <label><input type=\"checkbox\" class=\"loop\">"
          "Loop</label> <input type=\"range\" class=\"time\" min=\"0\" max=\"1000\" "
          "value=\"0\"> <span class=\"t\"></span> <button class=\"recompute\">Recompute</button> "
@@ -177,9 +186,48 @@ void Collect(std::vector<document::Node>& nodes, Walk& w, std::vector<size_t>& p
   }
 }
 
+// The document view on the host's pages: each page's picture with its text
+// (hidden, for reading aloud and finding), a rendition over each
+// animation's region, and a place for the renditions added with "Another
+// view" after the pages.
+const char* const kPageStyle =
+    "<style>body{background:#d8d8d8;margin:0;font:13px sans-serif}"
+    "h1{font-size:15px;margin:8px 16px}"
+    ".page{position:relative;margin:12px auto;background:#fff;box-shadow:0 1px 4px #888}"
+    ".page-picture{display:block;width:100%;height:100%}"
+    ".page-text{position:absolute;width:1px;height:1px;overflow:hidden;clip:rect(0 0 0 0)}"
+    "figure.rendition.placed{position:absolute;margin:0}"
+    "figure.rendition.placed figcaption{position:absolute;left:0;right:0;bottom:0;"
+    "background:rgba(255,255,255,.82);font-size:11px;padding:2px 4px;opacity:.5;"
+    "transition:opacity .15s}"
+    "figure.rendition.placed:hover figcaption,figure.rendition.placed:focus-within figcaption"
+    "{opacity:1}"
+    "#more-renditions{width:794px;margin:12px auto}h2,ul{margin-left:16px}</style>\n";
+
+std::string PagesHtml(const std::vector<HostPage>& pages, const Walk& w,
+                      const std::vector<Animation>& animations) {
+  auto px = [](double v) { return std::to_string(static_cast<long>(std::lround(v))); };
+  std::string html = kPageStyle;
+  for (size_t k = 0; k < pages.size(); ++k) {
+    const HostPage& p = pages[k];
+    const std::string of = "Page " + std::to_string(k + 1) + " of " + std::to_string(pages.size());
+    html += "<div class=\"page\" data-page=\"" + std::to_string(k) +
+            "\" style=\"width:" + px(p.width) + "px;height:" + px(p.height) +
+            "px\"><img class=\"page-picture\" src=\"/page?n=" + std::to_string(k) + "\" alt=\"" +
+            of + "\"><div class=\"page-text\">" + HtmlEscape(p.text) + "</div>\n";
+    for (const PageRegion& r : p.regions)
+      for (size_t i = 0; i < w.paths.size(); ++i)
+        if (w.paths[i] == r.element_path && animations[i].rendition)
+          html += RenditionHtml(i, animations[i], &r);
+    html += "</div>\n";
+  }
+  return html + "<div id=\"more-renditions\"></div>\n";
+}
+
 }  // namespace
 
-int ServeDocument(const std::string& path, const LaunchOptions& lo, const AttachHost& attach) {
+int ServeDocument(const std::string& path, const LaunchOptions& lo, const AttachHost& attach,
+                  std::vector<HostPage> pages) {
   auto loaded = document::LoadDocument(path);
   if (!loaded.document) {
     std::cerr << loaded.error << "\n";
@@ -215,7 +263,9 @@ int ServeDocument(const std::string& path, const LaunchOptions& lo, const Attach
   Collect(doc->nodes, page, at);
   Options o = MakeOptions(lo);
   o.document_title = fs::path(path).filename().string();
-  o.document_html = "<h1>" + HtmlEscape(o.document_title) + "</h1>\n" + page.html;
+  o.document_html = "<h1>" + HtmlEscape(o.document_title) + "</h1>\n" +
+                    (pages.empty() ? page.html : PagesHtml(pages, page, animations));
+  for (HostPage& p : pages) o.page_pngs.push_back(std::move(p.png));
   for (const Animation& a : animations)
     if (a.rendition) {
       o.document_html += kDocumentScript;

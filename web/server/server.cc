@@ -744,6 +744,14 @@ void HttpSession::OnRequest() {
     if (!d) return Respond(http::status::not_found, "text/plain", "no such download\n");
     return Respond(http::status::ok, d->type, d->bytes, d->name);
   }
+  if (path == "/page") {
+    const std::string n = QueryValue(target, "n");
+    char* end = nullptr;
+    const long k = std::strtol(n.c_str(), &end, 10);
+    if (n.empty() || *end != '\0' || k < 0 || static_cast<size_t>(k) >= o.page_pngs.size())
+      return Respond(http::status::not_found, "text/plain", "no such page\n");
+    return Respond(http::status::ok, "image/png", o.page_pngs[static_cast<size_t>(k)]);
+  }
   if (path == "/frame") {
     const long i = AnimationIndex(target);
     Hub* hub = i < 0 ? nullptr : server_.hub(static_cast<size_t>(i));

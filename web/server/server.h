@@ -7,6 +7,7 @@
 //                          /download?a=N&id=K  an export the server made (a movie)
 //                          /frame?a=N&t=T[&handles=1]  a rendition's picture (PNG), drawn
 //                                       by the animation's slave (dochost serve)
+//                          /page?n=K    the host's page K (PNG; dochost serve)
 //   browser ══WebSocket══▶ /ws?a=N     JSON {id, method, params} → {id, result | error};
 //                                       events {event: text | scene | state | error}
 //                                       go to every view of animation N
@@ -60,8 +61,9 @@ struct Options {
   std::string core_program;    // asgard-core
   std::string render_program;  // the asgard CLI (its `render` makes movies)
   std::string document_title;
-  std::string document_html;     // the live document view's body; empty: "/" is the editor
-  size_t max_message = 1 << 20;  // WebSocket message limit in bytes
+  std::string document_html;           // the live document view's body; empty: "/" is the editor
+  std::vector<std::string> page_pngs;  // GET /page?n=K: the host's page K (PNG)
+  size_t max_message = 1 << 20;        // WebSocket message limit in bytes
   std::function<void(int port)> on_listening;
 };
 

@@ -1,6 +1,7 @@
 // The live document view of `dochost serve` (seed 6.2.4), bundled into
 // build/web/document.js: each <figure class="rendition" data-a="N"> of the
-// page is a rendition of animation N with the host's toolbar.  It plays in
+// page is a rendition of animation N with the host's toolbar (on the
+// host's own pages, `placed` over the animation's region).  It plays in
 // WebGL (player.js) from the meshes and poses the editor server streams
 // (the `open` answer and every `scene` event, as the editor's viewer gets
 // them), so playback needs no server round trip.  Handles draws the
@@ -242,9 +243,16 @@ class Animation {
   }
 
   // Another rendition of this animation after `figure`, on the same clock.
+  // On the host's pages a figure lies over its region, so the new one goes
+  // below the pages instead.
   addRendition(figure) {
     const f = this.template.cloneNode(true);
-    figure.after(f);
+    const more = document.getElementById('more-renditions');
+    if (f.classList.contains('placed') && more) {
+      f.classList.remove('placed');
+      f.removeAttribute('style');
+      more.append(f);
+    } else figure.after(f);
     return this.add(f);
   }
 
