@@ -67,7 +67,8 @@ json SceneState(const session::Session& s) {
     elements.push_back({{"kind", scene::ElementKindName(e.kind)},
                         {"element", e.element},
                         {"editable", e.editable},
-                        {"reason", e.reason}});
+                        {"reason", e.reason},
+                        {"deleted_with", e.deleted_with}});
   return {{"ok", true},
           {"text", s.text()},
           {"diagnostics", diagnostics},

@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <charconv>
 #include <cmath>
+#include <unordered_map>
 
 #include "core/session/elements.h"
 #include "core/session/session.h"
@@ -63,35 +64,64 @@ const ElementRef* FindOrReport(const std::vector<ElementRef>& elements, const st
   return e;
 }
 
-// Whether `x` names the body or trajectory `target`: a force, torque, link,
-// trajectory or view on that body, or a link or view along that trajectory.
-bool Names(const ElementRef& x, const ElementRef& target) {
+// Who names what: the elements naming each body (a force, torque, link,
+// trajectory or view on it) and each trajectory (a link or view along it).
+struct NamedBy {
+  std::unordered_map<std::string, std::vector<const ElementRef*>> body, trajectory;
+};
+
+NamedBy IndexNames(const std::vector<ElementRef>& elements) {
   using K = scene::ElementKind;
-  const std::string& name = target.base->name;
-  if (name.empty()) return false;
-  if (target.kind == K::kBody) {
+  NamedBy by;
+  auto add = [](auto& map, const std::string& name, const ElementRef* x) {
+    if (!name.empty()) map[name].push_back(x);
+  };
+  for (const ElementRef& x : elements) {
     switch (x.kind) {
       case K::kForce:
-        return static_cast<const scene::Force*>(x.base)->body == name;
+        add(by.body, static_cast<const scene::Force*>(x.base)->body, &x);
+        break;
       case K::kTorque:
-        return static_cast<const scene::Torque*>(x.base)->body == name;
+        add(by.body, static_cast<const scene::Torque*>(x.base)->body, &x);
+        break;
+      case K::kTrajectory:
+        add(by.body, static_cast<const scene::Trajectory*>(x.base)->body, &x);
+        break;
       case K::kLink: {
         const auto* link = static_cast<const scene::Link*>(x.base);
-        return link->body1 == name || link->body2 == name;
+        add(by.body, link->body1, &x);
+        if (link->body2 != link->body1) add(by.body, link->body2, &x);
+        add(by.trajectory, link->trajectory, &x);
+        break;
       }
-      case K::kTrajectory:
-        return static_cast<const scene::Trajectory*>(x.base)->body == name;
-      case K::kView:
-        return static_cast<const scene::View*>(x.base)->follow == name;
+      case K::kView: {
+        const auto* view = static_cast<const scene::View*>(x.base);
+        add(by.body, view->follow, &x);
+        add(by.trajectory, view->trajectory, &x);
+        break;
+      }
       default:
-        return false;
+        break;
     }
   }
-  if (target.kind == K::kTrajectory) {
-    if (x.kind == K::kLink) return static_cast<const scene::Link*>(x.base)->trajectory == name;
-    if (x.kind == K::kView) return static_cast<const scene::View*>(x.base)->trajectory == name;
+  return by;
+}
+
+// `e` and, transitively, every element that names a body or trajectory
+// among them: what deleting `e` removes so that nothing is left dangling.
+std::vector<const ElementRef*> WithDependents(const ElementRef& e, const NamedBy& by) {
+  using K = scene::ElementKind;
+  std::vector<const ElementRef*> doomed = {&e};
+  for (size_t i = 0; i < doomed.size(); ++i) {
+    const ElementRef& d = *doomed[i];
+    if (d.base->name.empty() || (d.kind != K::kBody && d.kind != K::kTrajectory)) continue;
+    const auto& map = d.kind == K::kBody ? by.body : by.trajectory;
+    const auto it = map.find(d.base->name);
+    if (it == map.end()) continue;
+    for (const ElementRef* x : it->second)
+      if (std::find(doomed.begin(), doomed.end(), x) == doomed.end()) doomed.push_back(x);
   }
-  return false;
+  return doomed;
 }
 
 // The edit removing a command and, when it stands alone on its lines,
@@ -165,12 +195,16 @@ std::vector<Parameter> Session::Parameters() const {
 
 std::vector<ElementInfo> Session::ElementInfos() const {
   std::vector<ElementInfo> out;
-  for (const ElementRef& e : Elements(scene_)) {
+  const auto elements = Elements(scene_);
+  const NamedBy by = IndexNames(elements);
+  for (const ElementRef& e : elements) {
     ElementInfo info;
     info.kind = e.kind;
     info.element = e.key;
     info.reason = ReadOnlyReason(*e.base, nullptr);
     info.editable = info.reason.empty();
+    const auto doomed = WithDependents(e, by);
+    for (size_t i = 1; i < doomed.size(); ++i) info.deleted_with.push_back(doomed[i]->key);
     out.push_back(std::move(info));
   }
   return out;
@@ -312,13 +346,7 @@ EditResult Session::DeleteElement(const std::string& element) {
   const auto elements = Elements(scene_);
   const ElementRef* e = FindOrReport(elements, element, result);
   if (!e) return result;
-  // The element and, transitively, every element that names a body or
-  // trajectory being deleted, so that nothing is left dangling.
-  std::vector<const ElementRef*> doomed = {e};
-  for (size_t i = 0; i < doomed.size(); ++i)
-    for (const ElementRef& x : elements)
-      if (std::find(doomed.begin(), doomed.end(), &x) == doomed.end() && Names(x, *doomed[i]))
-        doomed.push_back(&x);
+  const std::vector<const ElementRef*> doomed = WithDependents(*e, IndexNames(elements));
   std::vector<TextEdit> edits;
   for (const ElementRef* d : doomed) {
     const std::string reason = ReadOnlyReason(*d->base, nullptr);

@@ -80,6 +80,9 @@ struct ElementInfo {
   std::string element;  // name, "simulator", or kind#index
   bool editable = false;
   std::string reason;  // why not, when not
+  // What DeleteElement removes with it (the elements naming a body or
+  // trajectory it removes, transitively), in the order it lists them.
+  std::vector<std::string> deleted_with;
 };
 
 class SessionView {

@@ -463,8 +463,15 @@ TEST(CreateDelete, DeletingABodyDeletesWhatNamesItAsOneUndoStep) {
                            "simulator -finish 1\n";
   Session s(base);
   ASSERT_FALSE(s.scene().has_errors());
+  // What the editor shows before it asks: each element's deleted_with is
+  // what deleting it removes, in the same order.
+  std::map<std::string, std::vector<std::string>> with;
+  for (const ElementInfo& e : s.ElementInfos()) with[e.element] = e.deleted_with;
+  EXPECT_EQ(with["free"], (std::vector<std::string>{"link#2"}));
+  EXPECT_TRUE(with["b"].size() == 4 && with["side"].empty() && with["force#0"].empty());
   const EditResult r = s.DeleteElement("a");
   ASSERT_TRUE(r.ok) << r.error;
+  EXPECT_EQ(r.removed, with["a"]);
   // The body, and what names it: its force, torque, link, trajectory and
   // view, and through the trajectory the link and view along it.
   EXPECT_EQ(s.text(), std::string(kBall) +

@@ -4,7 +4,8 @@
 // on the selected body, "Link" a link made by clicking two bodies.  Each new
 // element appears as one well-formatted command in every language viewer and
 // in both graphical viewers, and the session's Undo removes them again.
-// Delete of b1 removes the force and links that name it too, in one undo step.
+// Delete of b1 asks first, listing the force and links that name it, and
+// then removes them too, in one undo step.
 // "Force curve" makes a force that follows a new trajectory; Link's second
 // click on a trajectory links the body to its moving point.
 // Screenshots go to OUT_DIR.
@@ -136,6 +137,15 @@ await browserTest(asgard, scene, 'create', async ({ check, url, context }) => {
   check(await waitFor(() => a.evaluate(() => document.getElementById('selection').textContent === 'selected: b1'), 'b1 selected'), 'clicking b1 selects it');
   await sleep(300);
   await a.click('#delete-element');
+  // It asks first, naming what goes with b1; Cancel keeps everything.
+  const question = () => a.evaluate(() => !document.getElementById('delete-confirm').hidden && document.querySelector('#delete-confirm .question').textContent);
+  check(await waitFor(async () => (await question()) === 'Delete b1 and the 3 elements that name it: link#0, link#1, force#0?', 'the question'),
+    `Delete asks first, listing what names b1 ("${await question()}")`);
+  await a.click('#delete-confirm .no');
+  await sleep(300);
+  check((await texts([a]))[0] === original && await a.evaluate(() => document.getElementById('delete-confirm').hidden), 'Cancel deletes nothing');
+  await a.click('#delete-element');
+  await a.click('#delete-confirm .yes');
   const without = original.split('\n').filter((l) => !namesB1(l)).join('\n');
   check(await waitFor(() => everyText(pages, (t) => t === without), 'b1 deleted everywhere'),
     'Delete removes b1, its force and both links from every language viewer');

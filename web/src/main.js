@@ -156,6 +156,8 @@ function showSelection(name, element = name) {
   for (const id of ['create-force', 'create-gravity', 'create-force-trajectory', 'create-torque']) document.getElementById(id).disabled = !name;
   const known = element && app.state && app.state.elements.some((e) => e.element === element);
   document.getElementById('delete-element').disabled = !known;
+  const confirmBox = document.getElementById('delete-confirm');
+  if (confirmBox && confirmBox.dataset.element !== element) confirmBox.hidden = true;
 }
 
 async function create(command) {
@@ -246,17 +248,31 @@ function setupCreateMenu() {
     const knot = (t, p) => `{${[t, ...p].map((x) => Math.round(x * 1000) / 1000).join(' ')}}`;
     create(`trajectory ${freshName('trajectory')} -points {${knot(t0, from)} ${knot(t1, to)}}`);
   };
-  document.getElementById('delete-element').onclick = async () => {
-    const element = g().selectedElement;
-    if (!element) return;
+  // A body goes with the forces, torques, links, trajectories and views
+  // that name it (one undo step): the editor asks first, listing them
+  // (the session's deleted_with), and the status line lists them after.
+  const confirmBox = document.getElementById('delete-confirm');
+  const remove = async (element) => {
+    confirmBox.hidden = true;
     try {
-      // A body goes with the forces, torques, links, trajectories and views
-      // that name it (one undo step); the status line lists them.
       const r = await run('delete', { element });
       const removed = (r && r.removed) || [];
       app.setStatus(`deleted ${element}${removed.length ? ` and what named it: ${removed.join(', ')}` : ''}`);
       g().select(null);
     } catch { /* the status says why */ }
+  };
+  document.getElementById('delete-element').onclick = () => {
+    const element = g().selectedElement;
+    if (!element) return;
+    const info = app.state && app.state.elements.find((e) => e.element === element);
+    const also = (info && info.deleted_with) || [];
+    if (!also.length) return remove(element);
+    confirmBox.querySelector('.question').textContent =
+      `Delete ${element} and the ${also.length === 1 ? 'element that names' : `${also.length} elements that name`} it: ${also.join(', ')}?`;
+    confirmBox.querySelector('.yes').onclick = () => remove(element);
+    confirmBox.querySelector('.no').onclick = () => { confirmBox.hidden = true; };
+    confirmBox.dataset.element = element;
+    confirmBox.hidden = false;
   };
 }
 
