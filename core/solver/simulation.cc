@@ -14,6 +14,9 @@ namespace {
 // bound keeps progress reports and the interleaving fine-grained).
 constexpr double kRunAhead = 1.0 / 8.0;
 constexpr int kRunSteps = 64;
+// Under an observer (collision checks) a component runs ahead only after
+// this many steps without being cut back (StepOnce).
+constexpr int kCalmSteps = 32;
 
 ReadGraph ReadsOf(const physics::EquationSystem& sys) {
   // An exact joint's force depends on the whole state of every body it
@@ -134,6 +137,7 @@ Simulation::Simulation(const physics::EquationSystem& system, SolverOptions opti
   for (auto& comp : components_) comp->Initialize();
   stamp_.assign(components_.size(), 0);
   queued_.assign(components_.size(), 0);
+  calm_steps_.assign(components_.size(), kCalmSteps);
   for (size_t c = 0; c < components_.size(); ++c) Push(static_cast<int>(c));
 }
 
@@ -201,14 +205,18 @@ bool Simulation::StepOnce() {
     queued_[e.c] = 0;
     if (!Eligible(e.c)) continue;
     Component& comp = *components_[e.c];
-    // With no observer, the component keeps stepping while it stays within
-    // a window ahead of the one furthest behind (the queue's top): runs of
-    // steps of one component keep its state in cache, where a strict
-    // round-robin over many components reloads each from memory for every
-    // step.  Results do not depend on the order of steps (a step reads only
-    // its own last sample and its inputs' finished waveforms); observers
-    // (collision checks) see the strict order.
-    const double ahead = after_step ? 0.0 : kRunAhead * (sys_.t1 - sys_.t0);
+    // The component keeps stepping while it stays within a window ahead of
+    // the one furthest behind (the queue's top): runs of steps of one
+    // component keep its state in cache, where a strict round-robin over
+    // many components reloads each from memory for every step.  Results do
+    // not depend on the order of steps (a step reads only its own last
+    // sample and its inputs' finished waveforms; an observer's checks wait
+    // for every body to pass a window, and an impact cuts back whatever ran
+    // past it).  Under an observer only a calm component runs ahead (no cut
+    // in its last kCalmSteps steps): one in contact would be cut back at the
+    // next impact and its run thrown away.
+    const bool may_run = !after_step || calm_steps_[e.c] >= kCalmSteps;
+    const double ahead = may_run ? kRunAhead * (sys_.t1 - sys_.t0) : 0.0;
     const double limit = (queue_.empty() ? sys_.t1 : queue_.top().t) + ahead;
     int run = 0;
     do {
@@ -219,6 +227,7 @@ bool Simulation::StepOnce() {
         return false;
       }
       if (!Charge(e.c)) return false;
+      ++calm_steps_[e.c];
       if (after_step) after_step(*this, e.c);
       if (failed_) return false;
     } while (ahead > 0.0 && ++run < kRunSteps && comp.t_end() < limit && Eligible(e.c));
@@ -365,6 +374,7 @@ void Simulation::TruncateAll(const std::vector<int>& cs, double t, bool strict) 
     // component cut back further than t only recomputes up to them).
     components_[k]->ForgetAfter(t, strict);
     affected.push_back(static_cast<int>(k));
+    calm_steps_[k] = 0;
     if (on_truncate) on_truncate(*this, static_cast<int>(k), kept);
     for (int d : partition_.downstream[k]) cut[d] = std::min(cut[d], kept);
   }

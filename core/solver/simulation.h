@@ -233,6 +233,9 @@ class Simulation {
   std::priority_queue<Entry, std::vector<Entry>, std::greater<Entry>> queue_;
   std::vector<uint64_t> stamp_;  // current stamp per component
   std::vector<char> queued_;
+  // Steps each component has taken since a truncation last cut it (StepOnce:
+  // a component an observer watches runs ahead only once calm).
+  std::vector<int> calm_steps_;
   long repairs_ = 0;  // RepairQueue calls (the sequential schedule rescans after one)
   std::string error_;
   int failed_variable_ = -1;
