@@ -76,19 +76,28 @@ extern "C" size_t __sanitizer_get_current_allocated_bytes();
 namespace asgard::lang {
 namespace {
 
-constexpr size_t kMaxValueBytes = size_t{16} << 20;
-constexpr size_t kMaxListElements = size_t{4} << 20;
+// The size limits of this thread's evaluation, from EvalLimits::value_bytes
+// (Evaluate sets them): a value, the elements a list may get, all the
+// arguments of one command, a command's estimated result (below).
+struct SizeLimits {
+  size_t value, list_elements, command, result;
+  explicit SizeLimits(size_t value_bytes)
+      : value(value_bytes),
+        list_elements(value_bytes / 4),
+        command(4 * value_bytes),
+        result(16 * value_bytes) {}
+};
+thread_local SizeLimits size_limits{EvalLimits{}.value_bytes};
 constexpr size_t kCheckEveryBytes = size_t{32} << 20;
 constexpr long kCheckEveryCommands = 4096;
 constexpr int kRecursionLimit = 400;
-// All the arguments of one command together, and the string a pure list
-// argument would become: a command over more than this is refused (values
-// past 2 GB abort Tcl, and a command's result is at most about the sum of
-// its arguments for everything but the commands bounded separately below).
-constexpr size_t kMaxCommandBytes = size_t{64} << 20;
-// Bound on a single command's output estimated from its arguments (string
-// map, regsub, join): far below Tcl's 2 GB value limit.
-constexpr size_t kMaxResultBytes = size_t{256} << 20;
+// size_limits.command: all the arguments of one command together, and the
+// string a pure list argument would become: a command over more than this
+// is refused (values past 2 GB abort Tcl, and a command's result is at most
+// about the sum of its arguments for everything but the commands bounded
+// separately below).  size_limits.result: a bound on a single command's
+// output estimated from its arguments (string map, regsub, join), far below
+// Tcl's 2 GB value limit.
 
 // Tcl aborts the process on a panic (a value past 2 GB that a check above
 // did not foresee, an allocation failure).  While a scene command runs, the
@@ -252,7 +261,7 @@ std::string_view Text(Tcl_Obj* o) {
 // Commands whose result can be far larger than their arguments: a bound on
 // the result from the arguments, or 0 when there is nothing to fear.
 size_t ResultBound(GuardState& guard, Guarded kind, int objc, Tcl_Obj* const objv[]) {
-  auto len = [&](int i) { return StringBytes(guard, objv[i], kMaxResultBytes); };
+  auto len = [&](int i) { return StringBytes(guard, objv[i], size_limits.result); };
   if (kind == Guarded::kJoin && objc == 3) {
     int n = 0;
     if (Tcl_ListObjLength(nullptr, objv[1], &n) != TCL_OK) return 0;
@@ -267,7 +276,7 @@ size_t ResultBound(GuardState& guard, Guarded kind, int objc, Tcl_Obj* const obj
     if (Tcl_ListObjGetElements(nullptr, objv[map], &n, &pairs) != TCL_OK) return 0;
     size_t longest = 1;
     for (int i = 1; i < n; i += 2)
-      longest = std::max(longest, StringBytes(guard, pairs[i], kMaxResultBytes));
+      longest = std::max(longest, StringBytes(guard, pairs[i], size_limits.result));
     // Every input character can become the longest replacement at most.
     return (len(input) + 1) * longest;
   }
@@ -301,7 +310,7 @@ size_t ElementBound(Guarded kind, int objc, Tcl_Obj* const objv[]) {
   if (kind == Guarded::kSplit && (objc == 2 || objc == 3)) {
     int len = 0;
     const char* s = Tcl_GetStringFromObj(objv[1], &len);
-    if (static_cast<size_t>(len) < kMaxListElements) return 0;
+    if (static_cast<size_t>(len) < size_limits.list_elements) return 0;
     // The exact count: one more than the separators (default: white
     // space), or every character with an empty separator list.
     std::vector<Tcl_UniChar> seps;
@@ -341,7 +350,7 @@ size_t ElementBound(Guarded kind, int objc, Tcl_Obj* const objv[]) {
     Tcl_GetStringFromObj(objv[i + 1], &len);
     const size_t groups = 1 + static_cast<size_t>(std::count(exp.begin(), exp.end(), '('));
     const size_t bound = (static_cast<size_t>(len) + 1) * groups;
-    return bound > kMaxListElements ? bound : 0;
+    return bound > size_limits.list_elements ? bound : 0;
   }
   return 0;
 }
@@ -356,9 +365,10 @@ size_t RepeatedListBytes(GuardState& guard, Guarded kind, int objc, Tcl_Obj* con
   Tcl_WideInt count = 0;
   if (Tcl_GetWideIntFromObj(nullptr, objv[1], &count) != TCL_OK || count <= 0) return 0;
   // Too many elements: lrepeat itself refuses that, with its own message.
-  if (static_cast<size_t>(count) > kMaxListElements / static_cast<size_t>(objc - 2)) return 0;
+  if (static_cast<size_t>(count) > size_limits.list_elements / static_cast<size_t>(objc - 2))
+    return 0;
   size_t per = 0;
-  for (int i = 2; i < objc; ++i) per += StringBytes(guard, objv[i], kMaxCommandBytes) + 3;
+  for (int i = 2; i < objc; ++i) per += StringBytes(guard, objv[i], size_limits.command) + 3;
   return static_cast<size_t>(count) * per;
 }
 
@@ -366,7 +376,10 @@ void SetError(Tcl_Interp* interp, const std::string& message) {
   Tcl_SetObjResult(interp, Tcl_NewStringObj(message.data(), static_cast<int>(message.size())));
 }
 
-std::string MegaBytes(size_t bytes) { return std::to_string(bytes >> 20) + " MB"; }
+std::string MegaBytes(size_t bytes) {
+  return bytes >= (size_t{1} << 20) ? std::to_string(bytes >> 20) + " MB"
+                                    : std::to_string(bytes >> 10) + " KB";
+}
 
 // True if a `format` / `binary format` spec asks for a field wider than the
 // value limit (digit runs in the spec, or `*` with a huge argument).
@@ -379,8 +392,8 @@ bool HugeFormat(Guarded kind, int objc, Tcl_Obj* const objv[]) {
   size_t run = 0;
   for (char c : f) {
     if (c >= '0' && c <= '9') {
-      run = std::min(run * 10 + static_cast<size_t>(c - '0'), kMaxValueBytes + 1);
-      if (run > kMaxValueBytes) return true;
+      run = std::min(run * 10 + static_cast<size_t>(c - '0'), size_limits.value + 1);
+      if (run > size_limits.value) return true;
     } else {
       run = 0;
     }
@@ -389,8 +402,8 @@ bool HugeFormat(Guarded kind, int objc, Tcl_Obj* const objv[]) {
   for (int i = spec + 1; i < objc; ++i) {
     Tcl_WideInt w = 0;
     if (Tcl_GetWideIntFromObj(nullptr, objv[i], &w) == TCL_OK &&
-        (w > static_cast<Tcl_WideInt>(kMaxValueBytes) ||
-         w < -static_cast<Tcl_WideInt>(kMaxValueBytes))) {
+        (w > static_cast<Tcl_WideInt>(size_limits.value) ||
+         w < -static_cast<Tcl_WideInt>(size_limits.value))) {
       return true;
     }
   }
@@ -420,18 +433,18 @@ int GuardTrace(ClientData data, Tcl_Interp* interp, int, const char*, Tcl_Comman
   for (int i = 0; i < objc; ++i) {
     if (objv[i]->bytes == nullptr) {
       // A pure list: what its string would be, and its element array.
-      strings += StringBytes(*guard, objv[i], kMaxCommandBytes);
+      strings += StringBytes(*guard, objv[i], size_limits.command);
       int n = 0;
       if (objv[i]->typePtr == ListType() && Tcl_ListObjLength(nullptr, objv[i], &n) == TCL_OK)
         bytes += static_cast<size_t>(n) * sizeof(Tcl_Obj*);
-      if (strings > kMaxCommandBytes) break;
+      if (strings > size_limits.command) break;
       continue;
     }
     size_t len = static_cast<size_t>(objv[i]->length);
     strings += len;
-    if (len > kMaxValueBytes) {
+    if (len > size_limits.value) {
       SetError(interp, "value of " + std::to_string(len) + " bytes is above the scene limit of " +
-                           MegaBytes(kMaxValueBytes));
+                           MegaBytes(size_limits.value));
       return TCL_ERROR;
     }
     bytes += len;
@@ -442,35 +455,36 @@ int GuardTrace(ClientData data, Tcl_Interp* interp, int, const char*, Tcl_Comman
       return TCL_ERROR;
     }
   }
-  if (strings > kMaxCommandBytes) {
+  if (strings > size_limits.command) {
     SetError(interp, "the arguments of \"" + FirstWord(objv[0]) + "\" come to more than " +
-                         MegaBytes(kMaxCommandBytes) + " in all, above the scene limit");
+                         MegaBytes(size_limits.command) + " in all, above the scene limit");
     return TCL_ERROR;
   }
   if (objc >= 2) {
-    if (const size_t bound = ResultBound(*guard, kind, objc, objv); bound > kMaxResultBytes) {
+    if (const size_t bound = ResultBound(*guard, kind, objc, objv); bound > size_limits.result) {
       SetError(interp, "the result of \"" + FirstWord(objv[0]) + "\" could reach " +
                            std::to_string(bound) + " bytes, above the scene limit of " +
-                           MegaBytes(kMaxResultBytes));
+                           MegaBytes(size_limits.result));
       return TCL_ERROR;
     }
-    if (const size_t text = RepeatedListBytes(*guard, kind, objc, objv); text > kMaxCommandBytes) {
+    if (const size_t text = RepeatedListBytes(*guard, kind, objc, objv);
+        text > size_limits.command) {
       SetError(interp, "lrepeat: the result would come to " + std::to_string(text) +
                            " bytes as text, above the scene limit of " +
-                           MegaBytes(kMaxCommandBytes));
+                           MegaBytes(size_limits.command));
       return TCL_ERROR;
     }
-    if (const size_t count = ElementBound(kind, objc, objv); count > kMaxListElements) {
+    if (const size_t count = ElementBound(kind, objc, objv); count > size_limits.list_elements) {
       SetError(interp, "the result of \"" + FirstWord(objv[0]) + "\" could have " +
                            std::to_string(count) + " elements, above the scene limit of " +
-                           std::to_string(kMaxListElements) + " elements");
+                           std::to_string(size_limits.list_elements) + " elements");
       return TCL_ERROR;
     }
   }
   ctx.bytes_since_check += bytes;
   if (objc >= 2 && HugeFormat(kind, objc, objv)) {
     SetError(interp,
-             "format: field width is above the scene limit of " + MegaBytes(kMaxValueBytes));
+             "format: field width is above the scene limit of " + MegaBytes(size_limits.value));
     return TCL_ERROR;
   }
   if (++ctx.commands_since_check >= kCheckEveryCommands ||
@@ -503,9 +517,9 @@ int StringRepeat(ClientData, Tcl_Interp* interp, int objc, Tcl_Obj* const objv[]
     return TCL_OK;
   }
   size_t total = static_cast<size_t>(len) * static_cast<size_t>(count);
-  if (total > kMaxValueBytes) {
+  if (total > size_limits.value) {
     SetError(interp, "string repeat: result of " + std::to_string(total) +
-                         " bytes is above the scene limit of " + MegaBytes(kMaxValueBytes));
+                         " bytes is above the scene limit of " + MegaBytes(size_limits.value));
     return TCL_ERROR;
   }
   // Filled by doubling copies (one byte at a time, 400 MB took seconds).
@@ -535,10 +549,10 @@ int ListRepeat(ClientData, Tcl_Interp* interp, int objc, Tcl_Obj* const objv[]) 
   }
   size_t per = static_cast<size_t>(objc - 2);
   size_t total = per * static_cast<size_t>(count);
-  if (total > kMaxListElements) {
+  if (total > size_limits.list_elements) {
     SetError(interp, "lrepeat: result of " + std::to_string(total) +
                          " elements is above the scene limit of " +
-                         std::to_string(kMaxListElements) + " elements");
+                         std::to_string(size_limits.list_elements) + " elements");
     return TCL_ERROR;
   }
   std::vector<Tcl_Obj*> elems;
@@ -910,7 +924,10 @@ void CapProcessMemoryDuringEvaluation(bool on) { cap_process_memory.store(on); }
 scene::Scene Evaluate(std::string_view text, const EvalLimits& limits) {
   try {
     InitTcl();
-    if (text.size() > static_cast<size_t>(kMaxValueBytes) * 4) {
+    // At least 1 KB per value, at most 64 MB (4× that is a command's
+    // arguments, 16× a result bound: below Tcl's 2 GB).
+    size_limits = SizeLimits(std::clamp(limits.value_bytes, size_t{1} << 10, size_t{64} << 20));
+    if (text.size() > size_limits.command) {
       scene::Scene s;
       s.diagnostics.push_back({scene::Severity::kError, "scene text is too large", {0, 0, 1, 1}});
       return s;

@@ -37,6 +37,9 @@ struct EvalLimits {
   long command_limit = 1'000'000;  // Tcl commands per evaluation
   int time_limit_ms = 5000;        // wall-clock time per evaluation
   size_t memory_limit_mb = 512;    // heap growth allowed during an evaluation
+  // One Tcl value's size; all the arguments of one command together may be
+  // 4× it, a command's estimated result 16×, a list value_bytes/4 elements.
+  size_t value_bytes = size_t{16} << 20;
 };
 
 // Evaluates `text` and returns the scene.  Never throws.

@@ -382,6 +382,30 @@ TEST(LangLimits, AValuePastTclsMaximumSizeIsAnErrorNotAnAbort) {
   EXPECT_FALSE(next.has_errors());
 }
 
+// The value limit is a parameter (the fuzzer runs with 1 MB, so that
+// mutated scenes reach it in microseconds, not after making 16 MB): every
+// bound derived from it follows, and one evaluation's limits do not reach
+// the next's.
+TEST(LangLimits, TheValueLimitIsAParameterThatEachEvaluationSets) {
+  EvalLimits small;
+  small.value_bytes = size_t{1} << 20;
+  Scene fits = Evaluate("set s [string repeat x 1000000]\n", small);
+  EXPECT_FALSE(fits.has_errors()) << (fits.diagnostics.empty() ? "" : fits.diagnostics[0].message);
+  Scene refused = Evaluate("set x 1\nset s [string repeat x 1100000]\n", small);
+  ASSERT_EQ(refused.diagnostics.size(), 1u);
+  EXPECT_NE(refused.diagnostics[0].message.find("above the scene limit of 1 MB"), std::string::npos)
+      << refused.diagnostics[0].message;
+  EXPECT_EQ(refused.diagnostics[0].span.line, 2);
+  // 4 MB of arguments to one command (4 × the value limit) are refused.
+  Scene words = Evaluate("set s [string repeat x 900000]\nset l [list $s $s $s $s $s]\n", small);
+  ASSERT_EQ(words.diagnostics.size(), 1u);
+  EXPECT_NE(words.diagnostics[0].message.find("4 MB in all, above the scene limit"),
+            std::string::npos)
+      << words.diagnostics[0].message;
+  // The default again: 16 MB.
+  EXPECT_FALSE(Evaluate("set s [string repeat x 1100000]\n").has_errors());
+}
+
 // The split bound counts separators exactly: a long string with few of
 // them (or a regexp without -inline) is not refused.
 TEST(LangLimits, LongStringsWithFewPartsStillSplitAndMatch) {
