@@ -53,7 +53,14 @@ await browserTest(asgard, scene, 'shape', async ({ check, url, context }) => {
   check(await waitFor(hasNinth, 'the core mesh with nine vertices'), 'the core\'s mesh of the body now has nine vertices');
   await page.locator('#shape-editor canvas').screenshot({ path: join(outDir, '2-added.png') });
 
-  // Drag it into the cube: an inside point, the hull a cube again.
+  // Drag it into the cube: an inside point, the hull a cube again.  A
+  // second tab's shape editor follows the drag as it goes.
+  const other = await context.newPage();
+  await other.goto(url);
+  await waitFor(() => other.evaluate(() => window.asgard.ready), 'the second tab');
+  await other.click('#shapes-open');
+  const otherNinth = () => other.evaluate(() => window.asgard.shapes.handleList().find((x) => x.piece === 0 && x.index === 8));
+  check(await waitFor(async () => !!(await otherNinth()), 'the ninth point in the second tab'), 'the second tab\'s shape editor has the ninth point');
   const before = await page.evaluate(() => window.asgard.stateCount);
   await page.mouse.move(added.x, added.y);
   await page.mouse.down();
@@ -63,6 +70,8 @@ await browserTest(asgard, scene, 'shape', async ({ check, url, context }) => {
   const moving = h.find((x) => x.piece === 0 && x.index === 8).world.map((v) => Math.round(v * 1e4) / 1e4);
   check(await waitFor(async () => (await desc()).includes(`{${moving.join(' ')}}`), 'the text while dragging'),
     `while dragging, the language viewer's -desc already has the moved point {${moving.join(' ')}}`);
+  check(await waitFor(async () => { const o = await otherNinth(); return !!o && o.inside && o.world.every((v, k) => Math.abs(v - moving[k]) < 2e-4); }, 'the second tab during the drag'),
+    `while dragging, the second tab's shape editor shows the point where it is, inside the hull (${JSON.stringify((await otherNinth() || {}).world)})`);
   await page.locator('#shape-editor canvas').screenshot({ path: join(outDir, '3-inside.png') });
   await page.mouse.up();
   await waitFor(() => page.evaluate((k) => window.asgard.stateCount > k, before), 'the state after the drag');

@@ -444,6 +444,7 @@ json Hub::Handle(const std::string& method, const json& params,
                {"element", element},
                {"param", param},
                {"values", values},
+               {"word", word ? params["text"] : json()},
                {"view", params.value("view", "")}});
     return r;
   }

@@ -437,6 +437,7 @@ async function main() {
     if (!echoed) app.echo = null;
     for (const v of app.languageViewers) v.showSession(echoed || e.text, null);
     if (Array.isArray(e.values)) app.graphical.parameterEdited(e.element, e.param, e.values);
+    if (typeof e.word === 'string') app.shapes.follow(e.element, e.param, e.word);
   });
   conn.on('state', (e) => applyState(e.state));
   conn.on('scene', (e) => app.graphical.setScene(e.meshes, e.poses));

@@ -137,6 +137,7 @@ export class ShapeEditor {
     this.element = '';
     this.chosen = null;    // {piece, index} of the point last pressed
     this.adding = false;
+    this.written = new Set();  // the words this editor wrote (their echoes are not followed)
     this.raycaster = new THREE.Raycaster();
     this.setupEvents();
     // After setupEvents: a press on a handle disables the controls first.
@@ -170,8 +171,18 @@ export class ShapeEditor {
     this.open(name, name !== current);
   }
 
-  open(element, frame = true) {
-    const s = this.ui.shapes().find((x) => x.element === element);
+  // Another view's edit of the open shape's -desc word (a drag in another
+  // tab's shape editor, as it goes): reread it, keeping the camera.  The
+  // echoes of this editor's own writes are not followed.
+  follow(element, param, word) {
+    if (!this.shown() || this.drag || this.reason || element !== this.element || param !== 'desc') return;
+    if (this.written.has(word) || word === writeDesc(this.pieces)) return;
+    this.open(element, false, word);
+  }
+
+  open(element, frame = true, word = null) {
+    const found = this.ui.shapes().find((x) => x.element === element);
+    const s = found && word !== null ? { ...found, value: word } : found;
     // A sphere's surface point keeps its direction across a reread.
     const surfaces = element === this.element ? this.pieces.map((p) => p.surface) : [];
     this.element = element;
@@ -374,7 +385,11 @@ export class ShapeEditor {
   // The pieces as the -desc word: while dragging (done false), or a change
   // that is finished (re-simulated).
   write(done = true) {
-    if (!this.reason && this.element) this.ui.write(this.element, writeDesc(this.pieces), done);
+    if (this.reason || !this.element) return;
+    const word = writeDesc(this.pieces);
+    if (this.written.size > 64) this.written.clear();
+    this.written.add(word);
+    this.ui.write(this.element, word, done);
   }
 
   // For tests: handles as {piece, index, inside, x, y (page pixels), world}.
