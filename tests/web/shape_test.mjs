@@ -5,7 +5,8 @@
 // into the cube makes it an inside point (drawn so) and the hull a cube
 // again; a sphere's surface handle sets its radius; snapping rounds to the
 // grid; Delete vertex removes the chosen point; the text follows a drag
-// while it lasts; one Undo per change (a whole drag).
+// while it lasts, in a second tab's shape editor too; one Undo per change
+// (a whole drag); the cube's position handle moves the whole piece.
 import { join } from 'node:path';
 import { browserTest, openEditor, sleep, waitFor } from './common.mjs';
 
@@ -31,7 +32,7 @@ await browserTest(asgard, scene, 'shape', async ({ check, url, context }) => {
     return waitFor(() => page.evaluate((k) => window.asgard.stateCount > k, n), 'the state after the change');
   };
   let h = await list();
-  const corners = h.filter((x) => x.piece === 0);
+  const corners = h.filter((x) => x.piece === 0 && typeof x.index === 'number');
   check(corners.length === 8 && corners.every((x) => !x.inside), 'the cube\'s eight corners are handles, all on the hull');
   check(h.some((x) => x.piece === 1 && x.index === 'centre') && h.some((x) => x.piece === 1 && x.index === 'surface'), 'the ball has a centre and a surface handle');
   await page.locator('#shape-editor canvas').screenshot({ path: join(outDir, '1-cube.png') });
@@ -107,15 +108,47 @@ await browserTest(asgard, scene, 'shape', async ({ check, url, context }) => {
   await page.mouse.click(ninth.x, ninth.y);
   await sleep(100);
   check(await stateAfter(() => page.click('#shape-editor .delete')), 'Delete vertex updates the scene');
-  check((await list()).filter((x) => x.piece === 0).length === 8 && !(await desc()).includes(`{${p9.join(' ')}}`), 'the point is gone from the editor and the text');
+  const vertices = async () => (await list()).filter((x) => x.piece === 0 && typeof x.index === 'number').length;
+  check((await vertices()) === 8 && !(await desc()).includes(`{${p9.join(' ')}}`), 'the point is gone from the editor and the text');
 
   // Undo: the vertex back, then the radius, then inside/outside moves.
   await stateAfter(() => page.click('#undo'));
-  check((await list()).filter((x) => x.piece === 0).length === 9, 'Undo brings the deleted vertex back');
+  check((await vertices()) === 9, 'Undo brings the deleted vertex back');
   await stateAfter(() => page.click('#undo'));
   check(/-pos \{0 2 0\} -sphere 0.5\}/.test(await desc()), 'the next Undo the radius (the whole drag)');
   await stateAfter(() => page.click('#undo'));
   check((await desc()) === text1, 'and the next the drag into the cube, in one step');
   await page.locator('#shape-editor canvas').screenshot({ path: join(outDir, '4-undone.png') });
+
+  // The cube's position handle moves the whole piece: -pos changes, the
+  // vertices (relative to it) stay, every corner moves by the same amount.
+  h = await list();
+  const pos = h.find((x) => x.piece === 0 && x.index === 'pos');
+  check(!!pos && pos.world.every((v) => Math.abs(v) < 1e-9), 'the cube has a position handle at its -pos {0 0 0}');
+  const cornersBefore = h.filter((x) => x.piece === 0 && typeof x.index === 'number').map((x) => x.world);
+  const vertexList = (t) => /-pos \{[^}]*\} (-vertices .*?\}\})/.exec(t)?.[1];
+  const listBefore = vertexList(await desc());
+  await page.uncheck('#shape-editor input.snap');
+  check(await stateAfter(async () => {
+    await page.mouse.move(pos.x + 30, pos.y + 30);  // off every vertex, then onto the position alone
+    const free = await page.evaluate(([x, y]) => {
+      const list = window.asgard.shapes.handleList();
+      return list.filter((k) => Math.hypot(k.x - x, k.y - y) < 8).map((k) => k.index);
+    }, [pos.x, pos.y]);
+    check(free.length === 1 && free[0] === 'pos', `only the position handle is under the pointer (${JSON.stringify(free)})`);
+    await page.mouse.move(pos.x, pos.y);
+    await page.mouse.down();
+    for (let i = 1; i <= 4; ++i) { await page.mouse.move(pos.x + 10 * i, pos.y); await sleep(20); }
+    await page.mouse.up();
+  }), 'dragging the position updates the scene');
+  h = await list();
+  const moved = h.find((x) => x.piece === 0 && x.index === 'pos').world;
+  const cornersAfter = h.filter((x) => x.piece === 0 && typeof x.index === 'number').map((x) => x.world);
+  const text2 = await desc();
+  check(Math.hypot(...moved) > 0.05 && text2.includes(`-pos {${moved.map((v) => Math.round(v * 1e4) / 1e4).join(' ')}}`),
+    `the cube's -pos is the dragged position {${moved.map((v) => v.toFixed(4)).join(' ')}}`);
+  check(vertexList(text2) === listBefore, 'its vertices are written as before (relative to -pos)');
+  check(cornersAfter.length === cornersBefore.length && cornersAfter.every((c, i) => c.every((v, k) => Math.abs(v - cornersBefore[i][k] - moved[k]) < 1e-6)),
+    'every corner moved by the position\'s displacement');
   check(errors.length === 0, `no page errors ${errors.join('; ')}`);
 });

@@ -247,6 +247,8 @@ export class ShapeEditor {
         this.group.add(new THREE.Mesh(g, new THREE.MeshStandardMaterial({ color: colour, flatShading: true, transparent: true, opacity: 0.55, side: THREE.DoubleSide })));
         this.group.add(new THREE.LineSegments(new THREE.EdgesGeometry(g, 1), new THREE.LineBasicMaterial({ color: 0x333333 })));
       }
+      // The piece's -pos: dragging it moves the whole piece.
+      this.handles.push({ mesh: ball(piece.pos, 0x20a040, !!this.reason), piece: pi, index: 'pos' });
       abs.forEach((p, i) => {
         const inside = piece.inside[i];
         const chosen = this.chosen && this.chosen.piece === pi && this.chosen.index === i;
@@ -286,9 +288,12 @@ export class ShapeEditor {
       if (this.reason || ev.button !== 0) return;
       if (this.adding) { this.controls.enabled = false; this.addAt(ev); return; }
       this.raycaster.setFromCamera(this.pointer(ev), this.camera);
-      const hit = this.raycaster.intersectObjects(this.handles.map((x) => x.mesh), false)[0];
-      if (!hit) return;
-      const h = this.handles.find((x) => x.mesh === hit.object);
+      // A vertex before a piece's position where both are under the pointer
+      // (the position is often inside the hull, behind or on a vertex).
+      const hits = this.raycaster.intersectObjects(this.handles.map((x) => x.mesh), false)
+        .map((x) => this.handles.find((y) => y.mesh === x.object));
+      const h = hits.find((x) => x.index !== 'pos') || hits[0];
+      if (!h) return;
       this.controls.enabled = false;
       this.canvas.setPointerCapture(ev.pointerId);
       const normal = this.camera.getWorldDirection(new THREE.Vector3());
@@ -325,7 +330,7 @@ export class ShapeEditor {
   // A handle's piece after moving the handle to `at` (shape coordinates).
   moveHandle(h, at) {
     const piece = this.pieces[h.piece];
-    if (h.index === 'centre') piece.pos = at;
+    if (h.index === 'centre' || h.index === 'pos') piece.pos = at.map((v) => Math.round(v * 1e4) / 1e4);
     else if (h.index === 'surface') {
       const d = at.map((v, k) => v - piece.pos[k]), r = Math.hypot(...d);
       if (r > 1e-3) { piece.sphere = Math.round(r * 1e4) / 1e4; piece.surface = d.map((v) => v / r); }
@@ -335,6 +340,7 @@ export class ShapeEditor {
   describe(h) {
     const piece = this.pieces[h.piece];
     if (h.index === 'centre') return `${this.element} piece ${h.piece + 1}: sphere centre ${vec(piece.pos)}`;
+    if (h.index === 'pos') return `${this.element} piece ${h.piece + 1}: position ${vec(piece.pos)} (moves the piece)`;
     if (h.index === 'surface') return `${this.element} piece ${h.piece + 1}: radius ${num(piece.sphere)}`;
     return `${this.element} piece ${h.piece + 1} vertex ${h.index + 1} ${vec(piece.points[h.index])}${piece.inside[h.index] ? ' (inside the hull)' : ''}`;
   }
