@@ -69,11 +69,15 @@ json SceneState(const session::Session& s) {
                         {"editable", e.editable},
                         {"reason", e.reason},
                         {"deleted_with", e.deleted_with}});
+  json prescribed = json::array();
+  for (const auto& p : s.PrescribedInitials())
+    prescribed.push_back({{"body", p.body}, {"param", p.param}, {"reason", p.reason}});
   return {{"ok", true},
           {"text", s.text()},
           {"diagnostics", diagnostics},
           {"parameters", parameters},
           {"elements", elements},
+          {"prescribed", prescribed},
           {"can_undo", s.CanUndo()},
           {"can_redo", s.CanRedo()}};
 }

@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <charconv>
 #include <cmath>
+#include <cstdio>
 #include <unordered_map>
 
 #include "core/session/elements.h"
@@ -206,6 +207,50 @@ std::vector<ElementInfo> Session::ElementInfos() const {
     const auto doomed = WithDependents(e, by);
     for (size_t i = 1; i < doomed.size(); ++i) info.deleted_with.push_back(doomed[i]->key);
     out.push_back(std::move(info));
+  }
+  return out;
+}
+
+std::vector<PrescribedInitial> Session::PrescribedInitials() const {
+  using State = scene::Trajectory::State;
+  std::vector<PrescribedInitial> out;
+  const double start = scene_.simulator ? scene_.simulator->start : 0.0;
+  auto number = [](double v) {
+    char buf[32];
+    std::snprintf(buf, sizeof buf, "%.6g", v);
+    return std::string(buf);
+  };
+  for (const scene::Trajectory& t : scene_.trajectories) {
+    if (t.body.empty() || t.knots.empty() || t.state == State::kNone) continue;
+    const double from = t.from.value_or(t.knots.front().t);
+    const double to = t.to.value_or(t.knots.back().t);
+    if (!(from <= start && start < to)) continue;          // the override's interval
+    std::vector<std::pair<const char*, const char*>> set;  // param, what it is
+    switch (t.state) {
+      case State::kPos:
+        set = {{"init_pos", "position"}, {"init_dpos", "velocity"}};
+        break;
+      case State::kDpos:
+        set = {{"init_dpos", "velocity"}};
+        break;
+      case State::kRot:
+        set = {{"init_rot", "rotation"}, {"init_drot", "angular velocity"}};
+        break;
+      case State::kDrot:
+        set = {{"init_drot", "angular velocity"}};
+        break;
+      case State::kNone:
+        break;
+    }
+    for (const auto& [param, what] : set) {
+      const bool known = std::any_of(out.begin(), out.end(), [&](const PrescribedInitial& p) {
+        return p.body == t.body && p.param == param;
+      });
+      if (!known)
+        out.push_back({t.body, param,
+                       "trajectory " + t.name + " prescribes its " + what +
+                           " from t = " + number(from) + " to " + number(to)});
+    }
   }
   return out;
 }

@@ -85,6 +85,16 @@ struct ElementInfo {
   std::vector<std::string> deleted_with;
 };
 
+// A body's initial value that a trajectory sets at the start of the run, as
+// the equations override it (-state pos: position and velocity; rot:
+// rotation and spin; dpos: velocity; drot: spin; over [-from, -to), default
+// the first to the last knot): a graphical view shows its handle read-only.
+struct PrescribedInitial {
+  std::string body;
+  std::string param;   // init_pos, init_dpos, init_rot or init_drot
+  std::string reason;  // "trajectory T prescribes its position from t = 0 to 2"
+};
+
 class SessionView {
  public:
   virtual ~SessionView() = default;
@@ -140,6 +150,9 @@ class Session {
   EditResult DeleteElement(const std::string& element);
   std::vector<Parameter> Parameters() const;
   std::vector<ElementInfo> ElementInfos() const;
+  // From the evaluated scene (computed times and points count as well as
+  // literal ones); the first trajectory that sets a value gives the reason.
+  std::vector<PrescribedInitial> PrescribedInitials() const;
 
   // Simulates incrementally (see above).  False when the solver fails.
   bool Simulate(const std::function<void(double)>& progress = {});

@@ -535,3 +535,33 @@ TEST(Errors, AScriptWithErrorsStillAppliesItsValidPart) {
 
 }  // namespace
 }  // namespace asgard::session
+
+namespace asgard::session {
+namespace {
+
+// The initial values a trajectory sets at the start come from the evaluated
+// scene: times computed in Tcl count as literal ones; an interval that
+// starts after the run's start, or ends at it, sets nothing there.
+TEST(PrescribedInitials, ComeFromTheEvaluatedTrajectories) {
+  Session s(
+      "shape_set ball -desc {-sub {-sphere 0.5}}\n"
+      "foreach n {a b c d} { body $n -shape ball }\n"
+      "set late 1\n"
+      "simulator -start 0.5 -finish 3\n"
+      "trajectory up -points {{0 0 0 0} {2 0 1 0}} -body a -state pos -from [expr {$late - 1}]\n"
+      "trajectory spin -points {{0 0 0 1} {2 0 0 2}} -body b -state drot\n"
+      "trajectory later -points {{0 0 0 0} {2 0 1 0}} -body c -state pos -from $late\n"
+      "trajectory done -points {{0 0 0 0} {0.5 0 1 0}} -body d -state rot\n");
+  ASSERT_FALSE(s.scene().has_errors()) << s.scene().diagnostics[0].message;
+  std::vector<std::string> got;
+  for (const PrescribedInitial& p : s.PrescribedInitials())
+    got.push_back(p.body + "." + p.param + ": " + p.reason);
+  EXPECT_EQ(got,
+            (std::vector<std::string>{
+                "a.init_pos: trajectory up prescribes its position from t = 0 to 2",
+                "a.init_dpos: trajectory up prescribes its velocity from t = 0 to 2",
+                "b.init_drot: trajectory spin prescribes its angular velocity from t = 0 to 2"}));
+}
+
+}  // namespace
+}  // namespace asgard::session

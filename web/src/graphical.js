@@ -247,8 +247,9 @@ export class GraphicalViewer {
   }
 
   // The session's parameters and elements (scene_state).
-  setParameters(parameters, elements) {
+  setParameters(parameters, elements, prescribed = []) {
     this.index = new ParameterIndex(parameters, elements);
+    this.prescribed = prescribed;
     this.resetHandles();
     if (this.poses) this.seek(this.t);
   }
@@ -444,31 +445,11 @@ export class GraphicalViewer {
   }
 
   // The bodies' initial values that a trajectory prescribes at the start of
-  // the run ("body.init_pos" → why), as core/physics/equations.cc overrides
-  // them: -state pos sets the position and the velocity over [-from, -to]
-  // (default: the first to the last knot time), rot the rotation and the
-  // spin, dpos and drot the velocity and the spin.  Only literal times are
-  // read; a trajectory whose interval is computed is not judged here.
+  // the run ("body.init_pos" → why), as the session works them out from the
+  // evaluated scene (Session::PrescribedInitials: computed times and points
+  // count too).
   prescribedAtStart() {
-    const ix = this.index, out = new Map();
-    const sim = ix.ofKind('simulator')[0];
-    const start = Number(sim ? ix.text(sim, 'start', '0') : '0');
-    const affects = { pos: ['init_pos', 'init_dpos'], dpos: ['init_dpos'], rot: ['init_rot', 'init_drot'], drot: ['init_drot'] };
-    const words = { init_pos: 'position', init_dpos: 'velocity', init_rot: 'rotation', init_drot: 'angular velocity' };
-    for (const element of ix.ofKind('trajectory')) {
-      const body = ix.text(element, 'body');
-      const params = affects[ix.text(element, 'state', 'pos')];
-      const p = ix.get(element, 'points');
-      const knots = p ? parseKnots(p.value) : null;
-      if (!body || !params || !knots || !Number.isFinite(start)) continue;
-      const from = Number(ix.text(element, 'from', String(knots[0][0])));
-      const to = Number(ix.text(element, 'to', String(knots[knots.length - 1][0])));
-      if (!(from <= start && start <= to)) continue;
-      for (const param of params)
-        if (!out.has(`${body}.${param}`))
-          out.set(`${body}.${param}`, `trajectory ${element} prescribes its ${words[param]} from t = ${from} to ${to}`);
-    }
-    return out;
+    return new Map((this.prescribed || []).map((p) => [`${p.body}.${p.param}`, p.reason]));
   }
 
   // A trajectory (seed Figure 4.4): its curve, and a handle per control

@@ -33,7 +33,7 @@ function applyState(state) {
   app.stateCount = (app.stateCount || 0) + 1;
   app.text = state.text;
   for (const v of app.languageViewers) v.showSession(state.text, state.diagnostics, state.parameters);
-  app.graphical.setParameters(state.parameters, state.elements);
+  app.graphical.setParameters(state.parameters, state.elements, state.prescribed);
   showSimulatorOptions(state);
   showCreateMenu(state);
   if (app.shapes) app.shapes.refresh();

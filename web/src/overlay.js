@@ -159,7 +159,7 @@ export class HandleOverlay {
   }
 
   setScene(meshes, poses) { this.viewer.setScene(meshes, poses); }
-  setParameters(state) { this.viewer.setParameters(state.parameters, state.elements); }
+  setParameters(state) { this.viewer.setParameters(state.parameters, state.elements, state.prescribed); }
   parameterEdited(element, param, values) { this.viewer.parameterEdited(element, param, values); }
   // A tick of the document's clock: drawn at once, with the player's frame.
   seek(t) { this.viewer.seek(t, true); }
