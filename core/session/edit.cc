@@ -213,6 +213,17 @@ std::vector<ElementInfo> Session::ElementInfos() const {
 
 std::vector<PrescribedInitial> Session::PrescribedInitials() const {
   using State = scene::Trajectory::State;
+  // What each kind of trajectory sets (core/physics/equations.cc).
+  static constexpr struct {
+    State state;
+    const char* param;
+    const char* what;
+  } kSets[] = {{State::kPos, "init_pos", "position"},
+               {State::kPos, "init_dpos", "velocity"},
+               {State::kDpos, "init_dpos", "velocity"},
+               {State::kRot, "init_rot", "rotation"},
+               {State::kRot, "init_drot", "angular velocity"},
+               {State::kDrot, "init_drot", "angular velocity"}};
   std::vector<PrescribedInitial> out;
   const double start = scene_.simulator ? scene_.simulator->start : 0.0;
   auto number = [](double v) {
@@ -224,25 +235,9 @@ std::vector<PrescribedInitial> Session::PrescribedInitials() const {
     if (t.body.empty() || t.knots.empty() || t.state == State::kNone) continue;
     const double from = t.from.value_or(t.knots.front().t);
     const double to = t.to.value_or(t.knots.back().t);
-    if (!(from <= start && start < to)) continue;          // the override's interval
-    std::vector<std::pair<const char*, const char*>> set;  // param, what it is
-    switch (t.state) {
-      case State::kPos:
-        set = {{"init_pos", "position"}, {"init_dpos", "velocity"}};
-        break;
-      case State::kDpos:
-        set = {{"init_dpos", "velocity"}};
-        break;
-      case State::kRot:
-        set = {{"init_rot", "rotation"}, {"init_drot", "angular velocity"}};
-        break;
-      case State::kDrot:
-        set = {{"init_drot", "angular velocity"}};
-        break;
-      case State::kNone:
-        break;
-    }
-    for (const auto& [param, what] : set) {
+    if (!(from <= start && start < to)) continue;  // the override's interval
+    for (const auto& [state, param, what] : kSets) {
+      if (state != t.state) continue;
       const bool known = std::any_of(out.begin(), out.end(), [&](const PrescribedInitial& p) {
         return p.body == t.body && p.param == param;
       });
