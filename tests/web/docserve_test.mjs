@@ -199,6 +199,23 @@ try {
       check(frames >= 10, `${frames} WebGL frames drawn while playing (${(frames / elapsed).toFixed(1)} a second)`);
       check(frameRequests === requestsBefore, `no picture fetched from the server while playing (${frameRequests - requestsBefore})`);
       await page.screenshot({ path: join(outDir, '2-two-renditions.png') });
+      // Loop: set on one rendition, it is set on the other (one clock);
+      // played from t = 2.5 it goes past the end to the start and plays on.
+      await page.check(`${fig(0)} >> .loop`);
+      check(await page.isChecked(`${fig(1)} >> .loop`), 'Loop on one rendition is on for the other');
+      await page.locator(`${fig(0)} >> .time`).fill('833');
+      await page.click(`${fig(0)} >> .play`);
+      let late = false;
+      const wrapped = await waitFor(async () => {
+        const t = Number(await page.evaluate(() => document.querySelector('figure.rendition').dataset.t));
+        late ||= t > 2.6;
+        return late && t < 1.5 && (await page.textContent(`${fig(1)} >> .play`)) === 'Pause';
+      }, 'the loop', 10000);
+      check(wrapped, 'with Loop, playback goes past t = 3 back to the start and plays on');
+      await page.click(`${fig(0)} >> .play`);
+      await page.uncheck(`${fig(0)} >> .loop`);
+      await page.locator(`${fig(0)} >> .time`).fill('1000');  // back at t = 3 for what follows
+      await waitFor(async () => (await times()).every((t) => t === 3), 'the end again');
 
       // An edit simulated in another view reaches both renditions.
       const other = await view();
