@@ -19,6 +19,8 @@
 #include <cstdio>
 #include <iostream>
 #include <limits>
+#include <memory>
+#include <mutex>
 #include <optional>
 #include <set>
 #include <string>
@@ -552,28 +554,37 @@ int RunVerb(Host& h) {
   return Usage("unknown verb '" + o.verb + "'");
 }
 
-// The document view's pages: laid out and drawn as `convert` draws the PDF's
-// (each region with its poster; the live rendition lies over it), at twice
-// the CSS pixel density.  Empty with `error` when a page cannot be drawn.
-std::vector<serve::HostPage> ServePages(HostDocument& doc, std::string* error) {
+// The document view's pages: laid out as `convert` lays out the PDF, and
+// each drawn as it draws the PDF's pages (each region with its poster; the
+// live rendition lies over it), at twice the CSS pixel density, when the
+// browser first asks for it (a long document opens at once; pictures are
+// kept once drawn).  No pages when the layout cannot be made.
+serve::HostPages ServePages(HostDocument& doc) {
   constexpr double kCssPx = 96.0 / 72.0;  // CSS pixels per point
-  const PageStyle style;
-  std::vector<RegionContent> regions(doc.items().size());
-  for (size_t k = 0; k < regions.size(); ++k) {
+  struct Drawing {
+    PageStyle style;
+    std::vector<Page> pages;
+    std::vector<RegionContent> regions;
+    std::mutex mutex;  // the server's threads ask; Pango and Cairo draw one page at a time
+    std::vector<std::string> drawn;
+  };
+  auto d = std::make_shared<Drawing>();
+  d->regions.resize(doc.items().size());
+  for (size_t k = 0; k < d->regions.size(); ++k) {
     const Embedded& item = doc.items()[k];
-    regions[k].picture = item.poster;
+    d->regions[k].picture = item.poster;
     // A live rendition's toolbar says its status; one without says why.
     const bool live = item.medium && item.medium->node_rpc();
-    regions[k].caption = "Animation " + std::to_string(item.index) +
-                         (live || item.message.empty() ? "" : " · " + item.message);
+    d->regions[k].caption = "Animation " + std::to_string(item.index) +
+                            (live || item.message.empty() ? "" : " · " + item.message);
   }
-  std::vector<serve::HostPage> out;
-  for (const Page& page : Paginate(Blocks(doc), doc, style)) {
+  d->pages = Paginate(Blocks(doc), doc, d->style);
+  d->drawn.resize(d->pages.size());
+  serve::HostPages out;
+  for (const Page& page : d->pages) {
     serve::HostPage p;
-    p.png = PagePng(page, regions, 2 * 96.0, error, style);
-    if (p.png.empty()) return {};
-    p.width = style.width * kCssPx;
-    p.height = style.height * kCssPx;
+    p.width = d->style.width * kCssPx;
+    p.height = d->style.height * kCssPx;
     for (const Placed& b : page.items) {
       if (b.block.kind != Block::kEmbedded) {
         p.text += (b.block.label.empty() ? "" : b.block.label + ": ") + b.block.text + "\n";
@@ -582,8 +593,19 @@ std::vector<serve::HostPage> ServePages(HostDocument& doc, std::string* error) {
       const Embedded& item = doc.items()[static_cast<size_t>(b.block.item)];
       p.regions.push_back({item.path, b.x * kCssPx, b.y * kCssPx, b.w * kCssPx, b.h * kCssPx});
     }
-    out.push_back(std::move(p));
+    out.pages.push_back(std::move(p));
   }
+  out.picture = [d](size_t k) -> std::string {
+    std::lock_guard lock(d->mutex);
+    if (k >= d->pages.size()) return {};
+    if (d->drawn[k].empty()) {
+      std::string error;
+      d->drawn[k] = PagePng(d->pages[k], d->regions, 2 * 96.0, &error, d->style);
+      if (d->drawn[k].empty())
+        std::cerr << "dochost serve: page " << k + 1 << ": " << error << "\n";
+    }
+    return d->drawn[k];
+  };
   return out;
 }
 
@@ -611,12 +633,7 @@ int ServeCommand(const std::vector<std::string>& args) {
   std::vector<std::string> warnings;
   HostDocument doc(std::move(*loaded.document), registry, ho, &warnings);
   for (const auto& w : warnings) std::cerr << "dochost serve: " << w << "\n";
-  std::string page_error;
-  std::vector<serve::HostPage> pages = ServePages(doc, &page_error);
-  if (pages.empty())
-    std::cerr << "dochost serve: the pages cannot be drawn (" << page_error
-              << "); the document view shows the text as paragraphs\n";
-  return serve::ServeDocument(file, lo, AttachTo(doc), std::move(pages));
+  return serve::ServeDocument(file, lo, AttachTo(doc), ServePages(doc));
 }
 
 int Main(const std::vector<std::string>& args) {

@@ -155,6 +155,7 @@ try {
       await page.screenshot({ path: join(outDir, '1-document-view.png') });
       // The figure lies on the region of the PDF's layout (points → CSS
       // pixels, 96/72), within a pixel; the page's picture has the text.
+      await waitFor(() => page.evaluate(() => { const i = document.querySelector('.page-picture'); return i.complete && i.naturalWidth > 0; }), 'the page\'s picture');
       const placed = await page.evaluate(() => {
         const f = document.querySelector('figure.rendition'), p = f.closest('.page');
         const pr = p.getBoundingClientRect(), fr = f.querySelector('canvas, img').getBoundingClientRect();

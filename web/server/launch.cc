@@ -214,7 +214,7 @@ std::string PagesHtml(const std::vector<HostPage>& pages, const Walk& w,
     html += "<div class=\"page\" data-page=\"" + std::to_string(k) +
             "\" style=\"width:" + px(p.width) + "px;height:" + px(p.height) +
             "px\"><img class=\"page-picture\" src=\"/page?n=" + std::to_string(k) + "\" alt=\"" +
-            of + "\"><div class=\"page-text\">" + HtmlEscape(p.text) + "</div>\n";
+            of + "\" loading=\"lazy\"><div class=\"page-text\">" + HtmlEscape(p.text) + "</div>\n";
     for (const PageRegion& r : p.regions)
       for (size_t i = 0; i < w.paths.size(); ++i)
         if (w.paths[i] == r.element_path && animations[i].rendition)
@@ -227,7 +227,7 @@ std::string PagesHtml(const std::vector<HostPage>& pages, const Walk& w,
 }  // namespace
 
 int ServeDocument(const std::string& path, const LaunchOptions& lo, const AttachHost& attach,
-                  std::vector<HostPage> pages) {
+                  const HostPages& pages) {
   auto loaded = document::LoadDocument(path);
   if (!loaded.document) {
     std::cerr << loaded.error << "\n";
@@ -264,8 +264,9 @@ int ServeDocument(const std::string& path, const LaunchOptions& lo, const Attach
   Options o = MakeOptions(lo);
   o.document_title = fs::path(path).filename().string();
   o.document_html = "<h1>" + HtmlEscape(o.document_title) + "</h1>\n" +
-                    (pages.empty() ? page.html : PagesHtml(pages, page, animations));
-  for (HostPage& p : pages) o.page_pngs.push_back(std::move(p.png));
+                    (pages.pages.empty() ? page.html : PagesHtml(pages.pages, page, animations));
+  o.page_count = pages.pages.size();
+  o.page_picture = pages.picture;
   for (const Animation& a : animations)
     if (a.rendition) {
       o.document_html += kDocumentScript;

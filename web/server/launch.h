@@ -33,25 +33,31 @@ using AttachHost =
     std::function<void(const std::vector<size_t>& element_path, Animation& animation)>;
 
 // The host's own layout of the document (dochost serve), when it has one:
-// each page as the host draws its PDF pages (a PNG, the animations'
-// regions with their posters and captions), its text (for reading aloud
-// and finding), and where each <ASGARD> element's region lies on it, in
-// the page's CSS pixels.  The document view then shows these pages with a
-// live rendition over each animation's region; without them it shows the
+// each page's size, its text (for reading aloud and finding) and where each
+// <ASGARD> element's region lies on it, in the page's CSS pixels; and the
+// page's picture as the host draws its PDF pages (a PNG, the animations'
+// regions with their posters and captions), drawn when the browser first
+// asks for it.  The document view then shows these pages with a live
+// rendition over each animation's region; without them it shows the
 // document's text as paragraphs.
 struct PageRegion {
   std::vector<size_t> element_path;  // as AttachHost's
   double x = 0, y = 0, w = 0, h = 0;
 };
 struct HostPage {
-  std::string png;
   double width = 0, height = 0;  // CSS pixels
   std::string text;
   std::vector<PageRegion> regions;
 };
+struct HostPages {
+  std::vector<HostPage> pages;
+  // Page k's PNG (empty when it cannot be drawn); called from the server's
+  // threads, so it must be safe to call from any of them.
+  std::function<std::string(size_t k)> picture;
+};
 
 int ServeDocument(const std::string& path, const LaunchOptions& o, const AttachHost& attach = {},
-                  std::vector<HostPage> pages = {});
+                  const HostPages& pages = {});
 int ServeScene(const std::string& path, const LaunchOptions& o);
 
 // The folder of the browser bundle (index.html, editor.js, player.js):

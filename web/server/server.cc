@@ -749,9 +749,14 @@ void HttpSession::OnRequest() {
     const std::string n = QueryValue(target, "n");
     char* end = nullptr;
     const long k = std::strtol(n.c_str(), &end, 10);
-    if (n.empty() || *end != '\0' || k < 0 || static_cast<size_t>(k) >= o.page_pngs.size())
+    if (n.empty() || *end != '\0' || k < 0 || static_cast<size_t>(k) >= o.page_count ||
+        !o.page_picture)
       return Respond(http::status::not_found, "text/plain", "no such page\n");
-    return Respond(http::status::ok, "image/png", o.page_pngs[static_cast<size_t>(k)]);
+    std::string png = o.page_picture(static_cast<size_t>(k));
+    if (png.empty())
+      return Respond(http::status::internal_server_error, "text/plain",
+                     "the page cannot be drawn\n");
+    return Respond(http::status::ok, "image/png", std::move(png));
   }
   if (path == "/frame") {
     const long i = AnimationIndex(target);

@@ -61,9 +61,11 @@ struct Options {
   std::string core_program;    // asgard-core
   std::string render_program;  // the asgard CLI (its `render` makes movies)
   std::string document_title;
-  std::string document_html;           // the live document view's body; empty: "/" is the editor
-  std::vector<std::string> page_pngs;  // GET /page?n=K: the host's page K (PNG)
-  size_t max_message = 1 << 20;        // WebSocket message limit in bytes
+  std::string document_html;  // the live document view's body; empty: "/" is the editor
+  // GET /page?n=K: the host's page K (PNG), K < page_count (dochost serve).
+  size_t page_count = 0;
+  std::function<std::string(size_t k)> page_picture;
+  size_t max_message = 1 << 20;  // WebSocket message limit in bytes
   std::function<void(int port)> on_listening;
 };
 
