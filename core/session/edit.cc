@@ -236,14 +236,14 @@ std::vector<PrescribedInitial> Session::PrescribedInitials() const {
     const double from = t.from.value_or(t.knots.front().t);
     const double to = t.to.value_or(t.knots.back().t);
     if (!(from <= start && start < to)) continue;  // the override's interval
-    for (const auto& [state, param, what] : kSets) {
-      if (state != t.state) continue;
+    for (const auto& set : kSets) {
+      if (set.state != t.state) continue;
       const bool known = std::any_of(out.begin(), out.end(), [&](const PrescribedInitial& p) {
-        return p.body == t.body && p.param == param;
+        return p.body == t.body && p.param == set.param;
       });
       if (!known)
-        out.push_back({t.body, param,
-                       "trajectory " + t.name + " prescribes its " + what +
+        out.push_back({t.body, set.param,
+                       "trajectory " + t.name + " prescribes its " + set.what +
                            " from t = " + number(from) + " to " + number(to)});
     }
   }
