@@ -558,7 +558,8 @@ int RunVerb(Host& h) {
 // each drawn as it draws the PDF's pages (each region with its poster; the
 // live rendition lies over it), at twice the CSS pixel density, when the
 // browser first asks for it (a long document opens at once; pictures are
-// kept once drawn).  No pages when the layout cannot be made.
+// kept once drawn; a page that cannot be drawn is answered 500 and said on
+// stderr).
 serve::HostPages ServePages(HostDocument& doc) {
   constexpr double kCssPx = 96.0 / 72.0;  // CSS pixels per point
   struct Drawing {

@@ -134,14 +134,16 @@ struct Walk {
 // editor, another rendition.  The page's WebSocket to the animation is one
 // more view of it: a `scene` event (an edit's new motion, from any editor)
 // reaches every rendition, and all renditions of it follow one clock.
+// A length in whole CSS pixels, for a style or an attribute.
+std::string Px(double v) { return std::to_string(static_cast<long>(std::lround(v))); }
+
 // On a host page (`region`) the figure lies over the animation's region,
 // its picture the region's size and its toolbar over the picture's foot.
 std::string RenditionHtml(size_t i, const Animation& a, const PageRegion* region = nullptr) {
   const std::string n = std::to_string(i);
-  auto px = [](double v) { return std::to_string(static_cast<long>(std::lround(v))); };
   const std::string place =
-      region ? " placed\" style=\"left:" + px(region->x) + "px;top:" + px(region->y) + "px" : "";
-  const std::string size = region ? "\" width=\"" + px(region->w) + "\" height=\"" + px(region->h)
+      region ? " placed\" style=\"left:" + Px(region->x) + "px;top:" + Px(region->y) + "px" : "";
+  const std::string size = region ? "\" width=\"" + Px(region->w) + "\" height=\"" + Px(region->h)
                                   : "\" width=\"360\" height=\"240";
   return "<figure class=\"rendition" + place + "\" data-a=\"" + n + "\"><img alt=\"" +
          HtmlEscape(a.title) + size +
@@ -206,13 +208,12 @@ const char* const kPageStyle =
 
 std::string PagesHtml(const std::vector<HostPage>& pages, const Walk& w,
                       const std::vector<Animation>& animations) {
-  auto px = [](double v) { return std::to_string(static_cast<long>(std::lround(v))); };
   std::string html = kPageStyle;
   for (size_t k = 0; k < pages.size(); ++k) {
     const HostPage& p = pages[k];
     const std::string of = "Page " + std::to_string(k + 1) + " of " + std::to_string(pages.size());
     html += "<div class=\"page\" data-page=\"" + std::to_string(k) +
-            "\" style=\"width:" + px(p.width) + "px;height:" + px(p.height) +
+            "\" style=\"width:" + Px(p.width) + "px;height:" + Px(p.height) +
             "px\"><img class=\"page-picture\" src=\"/page?n=" + std::to_string(k) + "\" alt=\"" +
             of + "\" loading=\"lazy\"><div class=\"page-text\">" + HtmlEscape(p.text) + "</div>\n";
     for (const PageRegion& r : p.regions)
