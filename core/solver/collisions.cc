@@ -1581,9 +1581,20 @@ void CollisionMonitor::RespondResting(const Impact& impact) {
       // not land within the hop is held to its gap (a constraint that does
       // not act) and its pair with it, until the island's next event.
       double bounce = -kInf;
-      if (!pushed && p.gap > separation_) {
-        const double closing =
-            -(PointVelocity(pc.b, t, p.point) - PointVelocity(pc.a, t, p.point)).dot(p.normal);
+      const double closing =
+          pushed
+              ? 0.0
+              : -(PointVelocity(pc.b, t, p.point) - PointVelocity(pc.a, t, p.point)).dot(p.normal);
+      if (!pushed && p.gap <= separation_ && closing > 0) {
+        // A touching point that closes faster than a landing rests is an
+        // impact too, answered in this solve with its restitution: the
+        // middle ball of three struck at one instant passes the second
+        // strike on as the pairwise impacts would (held to rest, that pair
+        // lost half the energy).  Every approach is answered at once, so
+        // the instant has no further events.
+        if (landing_slow[k] < 0) landing_slow[k] = SlowSpeed(pc.a, pc.b, t, pc.points);
+        if (closing > landing_slow[k]) bounce = Restitution(pc.a, pc.b) * closing;
+      } else if (!pushed) {
         const double to_close = p.gap - separation_;
         const bool lands = to_close < closing * hop + 0.5 * pressed * hop * hop;
         const double slow = 2.0 * pressed * hop + 1e-6 * radius / hop;

@@ -149,6 +149,27 @@ TEST(Collision, NewtonsCradleOfThreeAndFiveBalls) {
   }
 }
 
+// Two balls strike a resting middle one at the same instant.  Equal elastic
+// balls pass each strike on as the pairwise impacts do, in either order: the
+// outer balls leave with each other's speeds and the middle one stays, so
+// momentum and kinetic energy are kept.  (Holding the pair struck a second
+// time at that instant to rest lost a quarter of the energy.)
+TEST(Collision, TwoBallsStrikingAMiddleOneAtOnceLeaveWithEachOthersSpeeds) {
+  for (const double vr : {-2.0, -1.0}) {
+    const SceneRun run =
+        SimulateOk(Sphere(0.5) +
+                   "body l -shape ball -mass 1 -init_pos {-3 0 0} -init_dpos {2 0 0}\n"
+                   "body c -shape ball -mass 1 -init_pos {0 0 0}\n"
+                   "body r -shape ball -mass 1 -init_pos {" +
+                   std::to_string(1 - vr) + " 0 0} -init_dpos {" + std::to_string(vr) +
+                   " 0 0}\n"
+                   "simulator -finish 3\n");
+    EXPECT_NEAR(Velocity(run, "l", 3).x(), vr, 1e-9) << vr;
+    EXPECT_NEAR(Velocity(run, "c", 3).x(), 0.0, 1e-9) << vr;
+    EXPECT_NEAR(Velocity(run, "r", 3).x(), 2.0, 1e-9) << vr;
+  }
+}
+
 TEST(Collision, ACubeFallingCornerFirstOnAStaticFloorKeepsItsKineticEnergy) {
   // A unit cube rotated so a corner points down, falling at speed 2 onto a
   // static floor (a wide flat box), no gravity.
