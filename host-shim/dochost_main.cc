@@ -586,11 +586,11 @@ serve::HostPages ServePages(HostDocument& doc) {
     serve::HostPage p;
     p.width = d->style.width * kCssPx;
     p.height = d->style.height * kCssPx;
+    for (const TextLine& l : PageLines(page))
+      p.lines.push_back({l.x * kCssPx, l.y * kCssPx, l.w * kCssPx, l.h * kCssPx, l.size * kCssPx,
+                         l.family, l.bold, l.text});
     for (const Placed& b : page.items) {
-      if (b.block.kind != Block::kEmbedded) {
-        p.text += (b.block.label.empty() ? "" : b.block.label + ": ") + b.block.text + "\n";
-        continue;
-      }
+      if (b.block.kind != Block::kEmbedded) continue;
       const Embedded& item = doc.items()[static_cast<size_t>(b.block.item)];
       p.regions.push_back({item.path, b.x * kCssPx, b.y * kCssPx, b.w * kCssPx, b.h * kCssPx});
     }

@@ -13,6 +13,7 @@
 #include <pango/pangocairo.h>
 
 #include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <memory>
 #include <sstream>
@@ -436,6 +437,65 @@ bool WritePngPages(const std::string& path, const std::vector<Page>& pages,
     if (written) written->push_back(out);
   }
   return true;
+}
+
+std::vector<TextLine> PageLines(const Page& page) {
+  std::vector<TextLine> out;
+  for (const Placed& p : page.items) {
+    if (p.block.kind == Block::kEmbedded) continue;
+    PangoLayout* layout = MakeLayout(p.block, p.w);
+    const std::string text = pango_layout_get_text(layout);
+    const PangoFontDescription* desc = pango_layout_get_font_description(layout);
+    TextLine font;
+    if (desc) {
+      font.size = static_cast<double>(pango_font_description_get_size(desc)) / PANGO_SCALE;
+      const char* family = pango_font_description_get_family(desc);
+      font.family = family ? family : "";
+      font.bold = pango_font_description_get_weight(desc) >= PANGO_WEIGHT_BOLD;
+    }
+    PangoLayoutIter* it = pango_layout_get_iter(layout);
+    bool first_line = true;
+    do {
+      PangoLayoutLine* line = pango_layout_iter_get_line_readonly(it);
+      const size_t start = static_cast<size_t>(line->start_index);
+      const size_t end = std::min(text.size(), start + static_cast<size_t>(line->length));
+      PangoRectangle logical;
+      pango_layout_iter_get_line_extents(it, nullptr, &logical);
+      auto x_of = [&](size_t index) {  // points from the layout's left
+        int x = 0;
+        pango_layout_line_index_to_x(line, static_cast<int>(index), FALSE, &x);
+        return static_cast<double>(logical.x + x) / PANGO_SCALE;
+      };
+      // A tab (a field's label and its text) splits the line: each piece
+      // is a line of its own, where the tab stop put it.
+      for (size_t a = start; a < end;) {
+        const size_t tab = std::min(end, text.find('\t', a));
+        std::string piece = text.substr(a, tab - a);
+        size_t kept = piece.size();
+        while (kept > 0 && std::isspace(static_cast<unsigned char>(piece[kept - 1]))) --kept;
+        piece.resize(kept);
+        if (!piece.empty()) {
+          TextLine l = font;
+          l.bold = font.bold || (p.block.kind == Block::kField && first_line && a == start &&
+                                 tab < end);  // the label
+          l.x = p.x + x_of(a);
+          const double right =
+              tab < end ? x_of(tab) : static_cast<double>(logical.x + logical.width) / PANGO_SCALE;
+          l.w = std::max(0.0, p.x + right - l.x);
+          l.y = p.y + static_cast<double>(logical.y) / PANGO_SCALE;
+          l.h = static_cast<double>(logical.height) / PANGO_SCALE;
+          l.baseline = p.y + static_cast<double>(pango_layout_iter_get_baseline(it)) / PANGO_SCALE;
+          l.text = std::move(piece);
+          out.push_back(std::move(l));
+        }
+        a = tab + 1;
+      }
+      first_line = false;
+    } while (pango_layout_iter_next_line(it));
+    pango_layout_iter_free(it);
+    g_object_unref(layout);
+  }
+  return out;
 }
 
 std::string LayoutJson(const std::vector<Page>& pages, const PageStyle& style) {

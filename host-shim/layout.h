@@ -71,6 +71,19 @@ bool WritePngPages(const std::string& path, const std::vector<Page>& pages,
 std::string PagePng(const Page& page, const std::vector<RegionContent>& regions, double dpi,
                     std::string* error, const PageStyle& style = {});
 
+// One line of a page's text as DrawPage sets it, in points: its box (the
+// line's logical extents), the baseline, the font, and the line's text
+// (tabs as spaces, no line break).  For a text layer over the page's
+// picture, where the text can be selected, copied and found.
+struct TextLine {
+  double x = 0, y = 0, w = 0, h = 0, baseline = 0;
+  double size = 0;     // points
+  std::string family;  // e.g. "DejaVu Serif"
+  bool bold = false;
+  std::string text;
+};
+std::vector<TextLine> PageLines(const Page& page);
+
 // The page boxes as JSON (for tests and tools): pages, blocks, regions.
 std::string LayoutJson(const std::vector<Page>& pages, const PageStyle& style = {});
 

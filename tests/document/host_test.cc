@@ -11,12 +11,14 @@
 #include <cstring>
 #include <nlohmann/json.hpp>
 #include <random>
+#include <sstream>
 
 #include "formats/document/document.h"
 #include "formats/document/file.h"
 #include "formats/document/xml.h"
 #include "host-shim/host_document.h"
 #include "host-shim/html.h"
+#include "host-shim/layout.h"
 #include "host-shim/medium.h"
 #include "tests/common/samples.h"
 
@@ -630,6 +632,50 @@ TEST(HostDocument, TheEditorsRequestsGoToTheSlaveThatDrawsTheRenditions) {
   ASSERT_EQ(doc.Call(item, "simulate", "{}", &r), ASGARD_OK) << item.message;
   EXPECT_EQ(doc.Frame(item, ASGARD_DEVICE_PAGE, 90, 60, 1.0, 0, &live).rgba, after.rgba);
   EXPECT_TRUE(live);
+}
+
+// The text layer of the served pages (PageLines): a paragraph too long for
+// a page comes back line by line, in reading order, every word once, each
+// line inside the text column and below the one before; a field's label
+// and its text are two pieces of one line, the label bold.
+TEST(Layout, PageLinesGiveEveryWordOnceInOrderInsideTheColumn) {
+  std::string words;
+  for (int i = 0; i < 1500; ++i) words += "word" + std::to_string(i) + " ";
+  const std::string text =
+      "DOCUMENT CMEMO\n<CMEMO>\n<TO>{Whom it may concern}</TO>\n<BODY>\n"
+      "<PARAGRAPH><TEXT>{" +
+      words + "}</TEXT></PARAGRAPH>\n</BODY>\n</CMEMO>\n";
+  auto parsed = document::Parse(text);
+  ASSERT_TRUE(parsed.ok());
+  HostDocument doc(*parsed.document, Registry(), Opts("t.ens"));
+  const PageStyle style;
+  const std::vector<Page> pages = Paginate(Blocks(doc), doc, style);
+  ASSERT_GE(pages.size(), 2u);
+  std::vector<std::string> read;
+  bool label = false;
+  for (const Page& page : pages) {
+    double below = 0;
+    for (const TextLine& l : PageLines(page)) {
+      EXPECT_GE(l.x, style.margin - 0.5) << l.text;
+      EXPECT_LE(l.x + l.w, style.width - style.margin + 0.5) << l.text;
+      EXPECT_GT(l.w, 0) << l.text;
+      EXPECT_GE(l.y, below - 0.01) << l.text;  // pieces of one line share its top
+      EXPECT_GT(l.baseline, l.y) << l.text;
+      EXPECT_LT(l.baseline, l.y + l.h) << l.text;
+      below = l.y;
+      if (l.text == "To:") {
+        label = l.bold;
+        continue;
+      }
+      std::istringstream in(l.text);
+      for (std::string w; in >> w;) read.push_back(w);
+    }
+  }
+  EXPECT_TRUE(label) << "the field's label is a bold piece of its own";
+  ASSERT_EQ(read.size(), 1500u + 4u);
+  EXPECT_EQ(read[0], "Whom");
+  for (int i = 0; i < 1500; ++i)
+    EXPECT_EQ(read[4 + static_cast<size_t>(i)], "word" + std::to_string(i));
 }
 
 TEST(Html, PlayerJsonPacksHullsKeepsStillBodiesToOnePoseAndRefusesBadData) {

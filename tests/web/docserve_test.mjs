@@ -174,6 +174,48 @@ try {
       check(!!r0 && placed.page === r0.page && [placed.x - r0.x * k, placed.y - r0.y * k, placed.w - r0.w * k, placed.h - r0.h * k].every((e) => Math.abs(e) <= 1),
         `the rendition lies on the animation's region of the PDF's page (${JSON.stringify(placed)} vs ${JSON.stringify(r0)} pt)`);
       check(placed.scale >= 1.9 && placed.dark > 0.005, `the page's picture has the text above the animation, at twice the page's pixels (${placed.dark.toFixed(4)} dark, ×${placed.scale.toFixed(2)})`);
+      // The page's text lies over the picture, line by line where the host
+      // set it: each line's box spans the ink of its words on the picture
+      // (leftmost and rightmost dark pixels within 2 CSS pixels of its ends),
+      // and a drag across a line selects its words.
+      check(await waitFor(() => page.evaluate(() => document.body.dataset.pageText === 'fitted'), 'the page text'), 'the page\'s text is fitted to its lines');
+      const lines = await page.evaluate(() => {
+        const p = document.querySelector('.page'), pr = p.getBoundingClientRect();
+        const pic = p.querySelector('.page-picture');
+        const c = document.createElement('canvas');
+        c.width = pic.naturalWidth; c.height = pic.naturalHeight;
+        c.getContext('2d').drawImage(pic, 0, 0);
+        const d = c.getContext('2d').getImageData(0, 0, c.width, c.height).data;
+        const k = c.width / pr.width;
+        return [...p.querySelectorAll('.page-text span')].map((s) => {
+          const r = s.getBoundingClientRect();
+          const x0 = Math.floor((r.left - pr.left - 6) * k), x1 = Math.ceil((r.right - pr.left + 6) * k);
+          const y0 = Math.floor((r.top - pr.top) * k), y1 = Math.ceil((r.bottom - pr.top) * k);
+          let left = Infinity, right = -Infinity;
+          for (let y = y0; y < y1; ++y)
+            for (let x = Math.max(0, x0); x < Math.min(c.width, x1); ++x) {
+              const o = 4 * (y * c.width + x);
+              if (d[o] < 128 && d[o + 1] < 128 && d[o + 2] < 128) { left = Math.min(left, x); right = Math.max(right, x); }
+            }
+          return { text: s.textContent, left: r.left - pr.left, right: r.right - pr.left, w: Number(s.dataset.w),
+            inkLeft: left / k, inkRight: (right + 1) / k, top: r.top, middle: (r.top + r.bottom) / 2, x: r.left, x1: r.right };
+        });
+      });
+      const layerText = lines.map((l) => l.text).join(' ');
+      check(['To:', 'Whom it may concern', 'Thanks to Vance for putting this example together'].every((t) => lines.some((l) => l.text === t)),
+        `the page's text layer has the memo's lines (${JSON.stringify(layerText)})`);
+      const off = lines.filter((l) => !(Math.abs(l.right - l.left - l.w) <= 1 && Math.abs(l.inkLeft - l.left) <= 2 && Math.abs(l.inkRight - l.right) <= 2));
+      check(lines.length >= 4 && off.length === 0, `each line of the text layer spans its words' ink on the page's picture (${JSON.stringify(off)})`);
+      const thanks = lines.find((l) => l.text.startsWith('Thanks'));
+      if (thanks) {
+        await page.mouse.move(thanks.x + 1, thanks.middle);
+        await page.mouse.down();
+        await page.mouse.move(thanks.x1 - 1, thanks.middle, { steps: 5 });
+        await page.mouse.up();
+        const selected = await page.evaluate(() => String(window.getSelection()));
+        check(selected === thanks.text, `a drag across a line of the page selects its words (${JSON.stringify(selected)})`);
+        await page.evaluate(() => window.getSelection().removeAllRanges());
+      }
       await page.locator(`${fig(0)} >> .time`).fill('1000');
       check(await waitFor(async () => (await page.textContent(`${fig(0)} >> .t`)) === 't = 3.00 s', 'the slider'), 'the slider at its end shows t = 3.00 s');
       const g3 = await blobOf(0, 'canvas'), s3 = await blobOf(0, frameUrl(3));

@@ -4,7 +4,9 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <cctype>
 #include <cmath>
+#include <cstdio>
 #include <cstdlib>
 #include <filesystem>
 #include <iostream>
@@ -136,6 +138,12 @@ struct Walk {
 // reaches every rendition, and all renditions of it follow one clock.
 // A length in whole CSS pixels, for a style or an attribute.
 std::string Px(double v) { return std::to_string(static_cast<long>(std::lround(v))); }
+// A length to a hundredth of a CSS pixel (a font's size, a text line's box).
+std::string Px2(double v) {
+  char b[32];
+  std::snprintf(b, sizeof b, "%.2f", std::isfinite(v) ? v : 0.0);
+  return b;
+}
 
 // On a host page (`region`) the figure lies over the animation's region,
 // its picture the region's size and its toolbar over the picture's foot.
@@ -189,15 +197,19 @@ void Collect(std::vector<document::Node>& nodes, Walk& w, std::vector<size_t>& p
 }
 
 // The document view on the host's pages: each page's picture with its text
-// (hidden, for reading aloud and finding), a rendition over each
-// animation's region, and a place for the renditions added with "Another
-// view" after the pages.
+// laid over it (transparent, each line where the host set it and stretched
+// to its width by document.js, so that it can be selected, copied, found and
+// read aloud), a rendition over each animation's region, and a place for
+// the renditions added with "Another view" after the pages.
 const char* const kPageStyle =
     "<style>body{background:#d8d8d8;margin:0;font:13px sans-serif}"
     "h1{font-size:15px;margin:8px 16px}"
     ".page{position:relative;margin:12px auto;background:#fff;box-shadow:0 1px 4px #888}"
     ".page-picture{display:block;width:100%;height:100%}"
-    ".page-text{position:absolute;width:1px;height:1px;overflow:hidden;clip:rect(0 0 0 0)}"
+    ".page-text{position:absolute;left:0;top:0;right:0;bottom:0;overflow:hidden;line-height:1}"
+    ".page-text span{position:absolute;white-space:pre;color:transparent;transform-origin:0 0;"
+    "cursor:text}"
+    ".page-text ::selection{color:transparent;background:rgba(40,110,255,.32)}"
     "figure.rendition.placed{position:absolute;margin:0}"
     "figure.rendition.placed figcaption{position:absolute;left:0;right:0;bottom:0;"
     "background:rgba(255,255,255,.82);font-size:11px;padding:2px 4px;opacity:.5;"
@@ -205,6 +217,22 @@ const char* const kPageStyle =
     "figure.rendition.placed:hover figcaption,figure.rendition.placed:focus-within figcaption"
     "{opacity:1}"
     "#more-renditions{width:794px;margin:12px auto}h2,ul{margin-left:16px}</style>\n";
+
+// The page's lines of text: one span each, at its box, in its font.
+std::string LinesHtml(const std::vector<PageLine>& lines) {
+  std::string html;
+  for (const PageLine& l : lines) {
+    std::string family;  // a CSS string: the family's name without quotes or escapes
+    for (char c : l.family)
+      if (std::isalnum(static_cast<unsigned char>(c)) || c == ' ' || c == '-') family += c;
+    const bool serif = family.find("Serif") != std::string::npos;
+    html += "<span style=\"left:" + Px2(l.x) + "px;top:" + Px2(l.y) + "px;height:" + Px2(l.h) +
+            "px;font:" + (l.bold ? "bold " : "") + Px2(l.font_px) + "px '" + family + "'," +
+            (serif ? "serif" : "sans-serif") + ";line-height:" + Px2(l.h) + "px\" data-w=\"" +
+            Px2(l.w) + "\">" + HtmlEscape(l.text) + "</span><br>";
+  }
+  return html;
+}
 
 std::string PagesHtml(const std::vector<HostPage>& pages, const Walk& w,
                       const std::vector<Animation>& animations) {
@@ -215,7 +243,7 @@ std::string PagesHtml(const std::vector<HostPage>& pages, const Walk& w,
     html += "<div class=\"page\" data-page=\"" + std::to_string(k) +
             "\" style=\"width:" + Px(p.width) + "px;height:" + Px(p.height) +
             "px\"><img class=\"page-picture\" src=\"/page?n=" + std::to_string(k) + "\" alt=\"" +
-            of + "\" loading=\"lazy\"><div class=\"page-text\">" + HtmlEscape(p.text) + "</div>\n";
+            of + "\" loading=\"lazy\"><div class=\"page-text\">" + LinesHtml(p.lines) + "</div>\n";
     for (const PageRegion& r : p.regions)
       for (size_t i = 0; i < w.paths.size(); ++i)
         if (w.paths[i] == r.element_path && animations[i].rendition)
@@ -268,11 +296,10 @@ int ServeDocument(const std::string& path, const LaunchOptions& lo, const Attach
                     (pages.pages.empty() ? page.html : PagesHtml(pages.pages, page, animations));
   o.page_count = pages.pages.size();
   o.page_picture = pages.picture;
-  for (const Animation& a : animations)
-    if (a.rendition) {
-      o.document_html += kDocumentScript;
-      break;
-    }
+  // The script plays the renditions and fits the pages' text to its lines.
+  bool script = !pages.pages.empty();
+  for (const Animation& a : animations) script = script || a.rendition;
+  if (script) o.document_html += kDocumentScript;
   return Serve(o, std::move(animations));
 }
 

@@ -33,7 +33,7 @@ using AttachHost =
     std::function<void(const std::vector<size_t>& element_path, Animation& animation)>;
 
 // The host's own layout of the document (dochost serve), when it has one:
-// each page's size, its text (for reading aloud and finding) and where each
+// each page's size, its lines of text (to select, copy, find and read aloud) and where each
 // <ASGARD> element's region lies on it, in the page's CSS pixels; and the
 // page's picture as the host draws its PDF pages (a PNG, the animations'
 // regions with their posters and captions), drawn when the browser first
@@ -44,9 +44,19 @@ struct PageRegion {
   std::vector<size_t> element_path;  // as AttachHost's
   double x = 0, y = 0, w = 0, h = 0;
 };
+// A line of the page's text where the host set it (CSS pixels): the
+// document view lays it, transparent, over the page's picture, stretched
+// to the line's width, so that it can be selected, copied and found.
+struct PageLine {
+  double x = 0, y = 0, w = 0, h = 0;
+  double font_px = 0;
+  std::string family;
+  bool bold = false;
+  std::string text;
+};
 struct HostPage {
   double width = 0, height = 0;  // CSS pixels
-  std::string text;
+  std::vector<PageLine> lines;
   std::vector<PageRegion> regions;
 };
 struct HostPages {

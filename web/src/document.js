@@ -314,6 +314,20 @@ class Animation {
   }
 }
 
+// The host's pages carry their text as transparent lines over the page's
+// picture (web/server/launch.cc): each is stretched to the width the host
+// set it at, in whatever font the browser has, so that a selection covers
+// the words the picture shows.
+function fitPageText() {
+  for (const line of document.querySelectorAll('.page-text span[data-w]')) {
+    const natural = line.offsetWidth;  // untransformed
+    if (natural > 0) line.style.transform = `scaleX(${Number(line.dataset.w) / natural})`;
+  }
+  document.body.dataset.pageText = 'fitted';
+}
+fitPageText();
+document.fonts?.ready.then(fitPageText);
+
 const animations = new Map();
 for (const figure of document.querySelectorAll('figure.rendition')) {
   const a = Number(figure.dataset.a);
