@@ -187,7 +187,7 @@ try {
         c.getContext('2d').drawImage(pic, 0, 0);
         const d = c.getContext('2d').getImageData(0, 0, c.width, c.height).data;
         const k = c.width / pr.width;
-        return [...p.querySelectorAll('.page-text span')].map((s) => {
+        return [...p.querySelectorAll('.page-text span[data-w]')].map((s) => {
           const r = s.getBoundingClientRect();
           const x0 = Math.floor((r.left - pr.left - 6) * k), x1 = Math.ceil((r.right - pr.left + 6) * k);
           const y0 = Math.floor((r.top - pr.top) * k), y1 = Math.ceil((r.bottom - pr.top) * k);
@@ -216,6 +216,19 @@ try {
         check(selected === thanks.text, `a drag across a line of the page selects its words (${JSON.stringify(selected)})`);
         await page.evaluate(() => window.getSelection().removeAllRanges());
       }
+      // Selected whole, the page's text reads as the page: a field's label
+      // and its text on one line, the fields on lines of their own.
+      const whole = await page.evaluate(() => {
+        const r = document.createRange();
+        r.selectNodeContents(document.querySelector('.page-text'));
+        const sel = window.getSelection();
+        sel.removeAllRanges();
+        sel.addRange(r);
+        const text = String(sel);
+        sel.removeAllRanges();
+        return text;
+      });
+      check(/To: Whom it may concern\s*\n\s*From: Wayne\s*\n/.test(whole), `the page's text copies line by line, each field on its line (${JSON.stringify(whole)})`);
       await page.locator(`${fig(0)} >> .time`).fill('1000');
       check(await waitFor(async () => (await page.textContent(`${fig(0)} >> .t`)) === 't = 3.00 s', 'the slider'), 'the slider at its end shows t = 3.00 s');
       const g3 = await blobOf(0, 'canvas'), s3 = await blobOf(0, frameUrl(3));

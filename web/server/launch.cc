@@ -219,9 +219,16 @@ const char* const kPageStyle =
     "#more-renditions{width:794px;margin:12px auto}h2,ul{margin-left:16px}</style>\n";
 
 // The page's lines of text: one span each, at its box, in its font.
+// Pieces of one line (a field's label and its text: the same top) are
+// apart by a space, lines by a break, so that a copy reads as the page.
 std::string LinesHtml(const std::vector<PageLine>& lines) {
   std::string html;
-  for (const PageLine& l : lines) {
+  for (size_t k = 0; k < lines.size(); ++k) {
+    const PageLine& l = lines[k];
+    if (k > 0 && l.y == lines[k - 1].y)  // a space of its own: between spans it would collapse
+      html += "<span style=\"left:" + Px2(l.x) + "px;top:" + Px2(l.y) + "px\"> </span>";
+    else if (k > 0)
+      html += "<br>";
     std::string family;  // a CSS string: the family's name without quotes or escapes
     for (char c : l.family)
       if (std::isalnum(static_cast<unsigned char>(c)) || c == ' ' || c == '-') family += c;
@@ -229,7 +236,7 @@ std::string LinesHtml(const std::vector<PageLine>& lines) {
     html += "<span style=\"left:" + Px2(l.x) + "px;top:" + Px2(l.y) + "px;height:" + Px2(l.h) +
             "px;font:" + (l.bold ? "bold " : "") + Px2(l.font_px) + "px '" + family + "'," +
             (serif ? "serif" : "sans-serif") + ";line-height:" + Px2(l.h) + "px\" data-w=\"" +
-            Px2(l.w) + "\">" + HtmlEscape(l.text) + "</span><br>";
+            Px2(l.w) + "\">" + HtmlEscape(l.text) + "</span>";
   }
   return html;
 }
