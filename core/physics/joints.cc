@@ -38,6 +38,9 @@ JointSolver::JointSolver(const EquationSystem& sys, std::vector<int> joints,
     d.local = local_first(b);
     d.inv_mass = 1.0 / m.mass;
     d.inv_inertia = m.inertia.inverse();
+    if (d.inv_inertia.isDiagonal(0.0) && d.inv_inertia(0, 0) == d.inv_inertia(1, 1) &&
+        d.inv_inertia(1, 1) == d.inv_inertia(2, 2))
+      d.isotropic = d.inv_inertia(0, 0);
     d.R.setIdentity();
     d.inv_inertia_world = d.inv_inertia;
     d.w.setZero();
@@ -155,9 +158,16 @@ Eigen::Matrix3d JointSolver::Coupling(int i, int k) const {
       const BodyData& b = bodies_[ei.body];
       if (b.kinematic) continue;
       const double sign = (x == y) ? 1.0 : -1.0;
-      // W(s, s') = I₃/m − [r]× I_W⁻¹ [r']× with world arms r = R s.
-      Eigen::Matrix3d W = -ei.arm_skew * b.inv_inertia_world * ek.arm_skew;
-      W.diagonal().array() += b.inv_mass;
+      // W(s, s') = I₃/m − [r]× I_W⁻¹ [r']× with world arms r = R s; with
+      // I_W⁻¹ = c I₃ that is (1/m + c r·r') I₃ − c r' rᵀ.
+      Eigen::Matrix3d W;
+      if (b.isotropic > 0) {
+        W.noalias() = -b.isotropic * ek.arm * ei.arm.transpose();
+        W.diagonal().array() += b.inv_mass + b.isotropic * ei.arm.dot(ek.arm);
+      } else {
+        W.noalias() = -ei.arm_skew * b.inv_inertia_world * ek.arm_skew;
+        W.diagonal().array() += b.inv_mass;
+      }
       K += sign * W;
     }
   return K;
@@ -169,7 +179,7 @@ void JointSolver::Prepare(double t, const double* values, const char* prescribed
     const int v0 = sys_.bodies[b.body].first_var;
     Eigen::Quaterniond q(values[v0 + kQw], values[v0 + kQx], values[v0 + kQy], values[v0 + kQz]);
     b.R = q.normalized().toRotationMatrix();
-    b.inv_inertia_world.noalias() = b.R * b.inv_inertia * b.R.transpose();
+    if (b.isotropic == 0) b.inv_inertia_world.noalias() = b.R * b.inv_inertia * b.R.transpose();
     b.w = Eigen::Vector3d(values[v0 + kW1], values[v0 + kW2], values[v0 + kW3]);
     b.kinematic = false;
     for (int slot = kX; slot <= kW3; ++slot)
@@ -177,7 +187,10 @@ void JointSolver::Prepare(double t, const double* values, const char* prescribed
   }
   for (JointData& d : joints_)
     for (End* e : {&d.a, &d.b})
-      if (e->body >= 0) e->arm_skew = Skew(bodies_[e->body].R * e->s);
+      if (e->body >= 0) {
+        e->arm = bodies_[e->body].R * e->s;
+        e->arm_skew = Skew(e->arm);
+      }
   if (!point_values_.empty() && !points_constant_)
     point_tape_.Evaluate(t, values, point_values_.data(), externs);
 }
@@ -214,7 +227,7 @@ void JointSolver::Apply(double t, const double* values, double* rates, const cha
                        Eigen::Vector3d& a) {
     const BodyData& b = bodies_[e.body];
     const int v0 = sys_.bodies[b.body].first_var;
-    arm = b.R * e.s;
+    arm = e.arm;
     p = Eigen::Vector3d(values[v0 + kX], values[v0 + kY], values[v0 + kZ]) + arm;
     v = Eigen::Vector3d(values[v0 + kDx], values[v0 + kDy], values[v0 + kDz]) +
         b.R * b.w.cross(e.s);
@@ -247,7 +260,27 @@ void JointSolver::Apply(double t, const double* values, double* rates, const cha
   Distribute(rates, prescribed);
 }
 
+// One joint: K is one 3×3 block, solved directly, with the same
+// regularization and refinement as below.
+void JointSolver::SolveOne() {
+  const Eigen::Matrix3d K = Coupling(0, 0);
+  Eigen::Matrix3d A = K;
+  const double scale = A.trace() / 3.0;
+  if (scale > 0)
+    A.diagonal().array() += kRegularization * scale;
+  else
+    A.setIdentity();  // both ends immovable: the force acts on nothing
+  const Eigen::Matrix3d inv = A.inverse();
+  const Eigen::Vector3d b = rhs_[0];
+  const Eigen::Vector3d l0 = inv * b;
+  rhs_[0] = l0 + inv * (b - K * l0);
+}
+
 void JointSolver::Solve() {
+  if (joints_.size() == 1) {
+    SolveOne();
+    return;
+  }
   // Assemble K (kept for the refinement) and K + εD in the factor's slots,
   // then factor L D Lᵀ.
   for (size_t s = 0; s < slot_keys_.size(); ++s) {

@@ -81,6 +81,9 @@ class JointSolver {
     int local;  // first local state index
     double inv_mass;
     Eigen::Matrix3d inv_inertia;  // body axes
+    // c when inv_inertia is c·I (a sphere, a cube): the world inverse
+    // inertia is then the same matrix and needs no rotation; else 0.
+    double isotropic = 0;
     // per evaluation
     Eigen::Matrix3d R;
     Eigen::Matrix3d inv_inertia_world;  // R I⁻¹ Rᵀ
@@ -90,6 +93,7 @@ class JointSolver {
   struct End {
     int body = -1;  // index into bodies_, -1: point of space
     Eigen::Vector3d s = Eigen::Vector3d::Zero();
+    Eigen::Vector3d arm = Eigen::Vector3d::Zero();       // R s, per evaluation
     Eigen::Matrix3d arm_skew = Eigen::Matrix3d::Zero();  // [R s]×, per evaluation
   };
   struct JointData {
@@ -116,6 +120,7 @@ class JointSolver {
   // Factors K + εD at the prepared state and overwrites rhs_ with the
   // solution of K λ = rhs_ (refined once against K).
   void Solve();
+  void SolveOne();  // Solve for a single joint
   void Substitute(std::vector<Eigen::Vector3d>& v) const;
   // Adds the effect of forces (or impulses) rhs_ to `out` (rates or velocities).
   void Distribute(double* out, const char* prescribed) const;
