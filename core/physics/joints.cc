@@ -159,11 +159,16 @@ Eigen::Matrix3d JointSolver::Coupling(int i, int k) const {
       if (b.kinematic) continue;
       const double sign = (x == y) ? 1.0 : -1.0;
       // W(s, s') = I₃/m − [r]× I_W⁻¹ [r']× with world arms r = R s; with
-      // I_W⁻¹ = c I₃ that is (1/m + c r·r') I₃ − c r' rᵀ.
+      // I_W⁻¹ = c I₃ that is I₃/m + c ((r·r') I₃ − r' rᵀ).  The bracket is
+      // formed first, as the product is: an arm along an axis gives exact
+      // zeros there, and a body hanging at rest gets joint forces that
+      // cancel its weight to the last bit (the rest test, component.h).
       Eigen::Matrix3d W;
       if (b.isotropic > 0) {
-        W.noalias() = -b.isotropic * ek.arm * ei.arm.transpose();
-        W.diagonal().array() += b.inv_mass + b.isotropic * ei.arm.dot(ek.arm);
+        W.noalias() = -ek.arm * ei.arm.transpose();
+        W.diagonal().array() += ei.arm.dot(ek.arm);
+        W *= b.isotropic;
+        W.diagonal().array() += b.inv_mass;
       } else {
         W.noalias() = -ei.arm_skew * b.inv_inertia_world * ek.arm_skew;
         W.diagonal().array() += b.inv_mass;

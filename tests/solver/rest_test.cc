@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdio>
 #include <string>
 
 #include "core/pipeline/pipeline.h"
@@ -44,6 +45,45 @@ TEST(RestSteps, APendulumHangingAtRestCostsOneStepHoweverLongTheRun) {
     EXPECT_EQ(run.simulation->Value(v + physics::kY, finish), -1.0);
     EXPECT_EQ(run.simulation->Value(v + physics::kDy, 0.5 * finish), 0.0);
   }
+}
+
+// Pendulums of other masses and lengths, and a chain of two (a block solve
+// of its joints), hanging straight down: the joint forces cancel the
+// weights to the last bit, however 1/m and the arms round (a mass of 5 on
+// an arm of 3 rounded 1/m + c L² − c L² away from 1/m).
+TEST(RestSteps, PendulumsOfAnyMassAndAChainOfTwoHangingAtRestCostOneStep) {
+  auto hanging = [](int links, double mass, double len0) {
+    std::string text = "shape_set ball -desc {-sub {-pos {0 0 0} -sphere 0.5}}\n";
+    double y = 0;
+    for (int i = 0; i < links; ++i) {
+      const double len = len0 + 0.5 * i;
+      const std::string name = "b" + std::to_string(i);
+      char body[256];
+      std::snprintf(body, sizeof body, "body %s -shape ball -mass %.17g -init_pos {0 %.17g 0}\n",
+                    name.c_str(), mass + i, y - len);
+      text += body;
+      text += "force -body " + name + " -y -9.81 -gravitational 1\n";
+      char link[256];
+      if (i == 0)
+        std::snprintf(link, sizeof link, "link -body1 b0 -offset1 {0 %.17g 0} -x 0 -y 0 -z 0\n",
+                      len);
+      else
+        std::snprintf(link, sizeof link,
+                      "link -body1 %s -offset1 {0 %.17g 0} -body2 b%d -offset2 {0 0 0}\n",
+                      name.c_str(), len, i - 1);
+      text += link;
+      y -= len;
+    }
+    return text + "simulator -finish 100 -collisions 0\n";
+  };
+  for (const int links : {1, 2})
+    for (const double mass : {1.0, 3.0, 5.0, 0.7})
+      for (const double len : {1.0, 1.5, 3.0}) {
+        const pipeline::Run run = Simulate(hanging(links, mass, len));
+        const solver::Counters c = run.simulation->totals();
+        EXPECT_EQ(c.steps, 1) << links << " links, mass " << mass << ", length " << len;
+        EXPECT_EQ(c.rest_steps, 1) << links << " links, mass " << mass << ", length " << len;
+      }
 }
 
 TEST(RestSteps, AnInvertedPendulumARoundingAwayFromUpFallsAsTheLinearizationSays) {
