@@ -224,7 +224,7 @@ void JointSolver::ProjectVelocities(double t, const double* values, double* stat
 }
 
 void JointSolver::Apply(double t, const double* values, double* rates, const char* prescribed,
-                        const expr::ExternFn* externs) {
+                        const expr::ExternFn* externs, double* magnitude, int refinements) {
   Prepare(t, values, prescribed, externs);
 
   // Position, velocity and free acceleration of one end of a joint.
@@ -261,8 +261,8 @@ void JointSolver::Apply(double t, const double* values, double* rates, const cha
     rhs_[j] = -(Cdd + 2.0 * kStabilization * Cd + kStabilization * kStabilization * C);
   }
 
-  Solve();
-  Distribute(rates, prescribed);
+  Solve(refinements);
+  Distribute(rates, prescribed, magnitude);
 }
 
 // One joint: K is one 3×3 block, solved directly, with the same
@@ -281,7 +281,7 @@ void JointSolver::SolveOne() {
   rhs_[0] = l0 + inv * (b - K * l0);
 }
 
-void JointSolver::Solve() {
+void JointSolver::Solve(int refinements) {
   if (joints_.size() == 1) {
     SolveOne();
     return;
@@ -329,15 +329,18 @@ void JointSolver::Solve() {
   // Where K is singular (redundant constraints) the correction only grows λ
   // in K's null space, whose forces cancel on every body (K λ = 0 ⇔ Jᵀλ = 0).
   const size_t n = joints_.size();
-  for (size_t j = 0; j < n; ++j) residual_[j] = rhs_[j];
+  b_.assign(rhs_.begin(), rhs_.end());
   Substitute(rhs_);
-  for (size_t s = 0; s < slot_keys_.size(); ++s) {
-    const auto [i, k] = slot_keys_[s];
-    residual_[i] -= coupling_[s] * rhs_[k];
-    if (i != k) residual_[k] -= coupling_[s].transpose() * rhs_[i];
+  for (int pass = 0; pass < refinements; ++pass) {
+    for (size_t j = 0; j < n; ++j) residual_[j] = b_[j];
+    for (size_t s = 0; s < slot_keys_.size(); ++s) {
+      const auto [i, k] = slot_keys_[s];
+      residual_[i] -= coupling_[s] * rhs_[k];
+      if (i != k) residual_[k] -= coupling_[s].transpose() * rhs_[i];
+    }
+    Substitute(residual_);
+    for (size_t j = 0; j < n; ++j) rhs_[j] += residual_[j];
   }
-  Substitute(residual_);
-  for (size_t j = 0; j < n; ++j) rhs_[j] += residual_[j];
 }
 
 // v ← (L D Lᵀ)⁻¹ v with the factor Solve left in blocks_ and dinv_.
@@ -353,7 +356,7 @@ void JointSolver::Substitute(std::vector<Eigen::Vector3d>& v) const {
       v[it->joint] -= L(*it, r).transpose() * v[it->rows[r]];
 }
 
-void JointSolver::Distribute(double* out, const char* prescribed) const {
+void JointSolver::Distribute(double* out, const char* prescribed, double* magnitude) const {
   const int n = static_cast<int>(joints_.size());
   // Apply λ: +λ on a's anchor, −λ on b's.
   auto push = [&](const End& e, const Eigen::Vector3d& force) {
@@ -366,6 +369,11 @@ void JointSolver::Distribute(double* out, const char* prescribed) const {
       if (!prescribed[b.local + kDx + a]) out[b.local + kDx + a] += dv[a];
       if (!prescribed[b.local + kW1 + a]) out[b.local + kW1 + a] += dw[a];
     }
+    if (magnitude)
+      for (int a = 0; a < 3; ++a) {
+        magnitude[b.local + kDx + a] += std::abs(dv[a]);
+        magnitude[b.local + kW1 + a] += std::abs(dw[a]);
+      }
   };
   for (int j = 0; j < n; ++j) {
     push(joints_[j].a, rhs_[j]);

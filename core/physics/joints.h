@@ -62,8 +62,16 @@ class JointSolver {
   // variable (global indices) at time t; `rates` the free rates.  Rows set in
   // `prescribed` (local) are values, not rates, and are left alone; a body
   // whose velocity is prescribed moves as prescribed (infinite mass).
+  // `magnitude` (optional, local rows like `rates`): each row gets the sum of
+  // the magnitudes of the joint terms added to it — the size of the
+  // cancellation's rounding where the joint forces balance others (a chain
+  // hanging at rest: each body's rate is a difference of the forces that
+  // carry the weight below it).
+  // `refinements`: steps of iterative refinement of the joint forces (one
+  // leaves a relative error of ε², enough for integration; the rest test
+  // asks for two, as a long chain's K is less well conditioned).
   void Apply(double t, const double* values, double* rates, const char* prescribed,
-             const expr::ExternFn* externs);
+             const expr::ExternFn* externs, double* magnitude = nullptr, int refinements = 1);
 
   // An impulsive joint response: after velocities jumped (a collision),
   // impulses at the joints make every joint's relative velocity zero again
@@ -119,11 +127,11 @@ class JointSolver {
                const expr::ExternFn* externs);
   // Factors K + εD at the prepared state and overwrites rhs_ with the
   // solution of K λ = rhs_ (refined once against K).
-  void Solve();
+  void Solve(int refinements = 1);
   void SolveOne();  // Solve for a single joint
   void Substitute(std::vector<Eigen::Vector3d>& v) const;
   // Adds the effect of forces (or impulses) rhs_ to `out` (rates or velocities).
-  void Distribute(double* out, const char* prescribed) const;
+  void Distribute(double* out, const char* prescribed, double* magnitude = nullptr) const;
   int Slot(int i, int j);
   Eigen::Matrix3d Coupling(int i, int k) const;
 
@@ -142,6 +150,7 @@ class JointSolver {
   std::vector<Eigen::Vector3d> residual_;                 // per joint
   std::vector<Eigen::Matrix3d> dinv_;                     // per pivot
   std::vector<Eigen::Vector3d> rhs_;                      // per joint
+  std::vector<Eigen::Vector3d> b_;                        // per joint: the right side solved
   std::vector<Eigen::Vector3d> arm_a_, arm_b_;            // per joint, world
 };
 

@@ -977,11 +977,31 @@ double Component::RestSpan(const Mode& m, double h, const std::vector<int>* rows
   // (gravity against the joint holding a pendulum) counts as zero.
   if (joints_) {
     Load(t, x, Side::kRight);
-    m.f_tape.tape->Evaluate(std::nextafter(t, std::numeric_limits<double>::infinity()),
-                            sim_.values() + m.f_tape.shift, fg_.data(), &sim_.externs());
-    for (size_t j = 0; j < n; ++j)
-      if (tested(j) && joint_rows_[j] && std::abs(f[j]) > kRestRounding * std::abs(fg_[j]))
-        fn = std::max(fn, weighted(j));
+    const double te = std::nextafter(t, std::numeric_limits<double>::infinity());
+    m.f_tape.tape->Evaluate(te, sim_.values() + m.f_tape.shift, fg_.data(), &sim_.externs());
+    bool balanced = true;
+    for (size_t j = 0; j < n && balanced; ++j)
+      balanced =
+          !(tested(j) && joint_rows_[j] && std::abs(f[j]) > kRestRounding * std::abs(fg_[j]));
+    if (!balanced) {
+      // The rounding of a cancellation is that of the terms cancelled: in a
+      // hanging chain a body's joint terms carry the weight of the bodies
+      // below it, far more than its own.  The rates again, with the size of
+      // their joint terms and the joint forces refined twice (a long
+      // chain's K is less well conditioned): at rest they are rounding,
+      // where the sample's own rates (f) may be a little more.  r_ and est_
+      // are free here (step scratch).
+      std::copy(fg_.data(), fg_.data() + n, r_.data());
+      std::fill(est_.data(), est_.data() + n, 0.0);
+      joints_->Apply(te, sim_.values(), r_.data(), m.prescribed.data(), &sim_.externs(),
+                     est_.data(), 2);
+    }
+    for (size_t j = 0; j < n; ++j) {
+      if (!tested(j) || !joint_rows_[j]) continue;
+      const bool moving = balanced ? std::abs(f[j]) > kRestRounding * std::abs(fg_[j])
+                                   : std::abs(r_[j]) > kRestRounding * (std::abs(fg_[j]) + est_[j]);
+      if (moving) fn = std::max(fn, weighted(j));
+    }
   }
   if (fn == 0.0) return std::numeric_limits<double>::infinity();
   const double first = kRestFraction / fn;

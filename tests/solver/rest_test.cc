@@ -76,7 +76,7 @@ TEST(RestSteps, PendulumsOfAnyMassAndAChainOfTwoHangingAtRestCostOneStep) {
     }
     return text + "simulator -finish 100 -collisions 0\n";
   };
-  for (const int links : {1, 2})
+  for (const int links : {1, 2, 3, 5})
     for (const double mass : {1.0, 3.0, 5.0, 0.7})
       for (const double len : {1.0, 1.5, 3.0}) {
         const pipeline::Run run = Simulate(hanging(links, mass, len));
