@@ -76,8 +76,6 @@ JointSolver::JointSolver(const EquationSystem& sys, std::vector<int> joints,
     point_tape_ = expr::Tape::Compile(sys.pool, point_outputs);
   const size_t n = joints_.size();
   rhs_.assign(n, Eigen::Vector3d::Zero());
-  arm_a_.assign(n, Eigen::Vector3d::Zero());
-  arm_b_.assign(n, Eigen::Vector3d::Zero());
   Symbolic();
 }
 
@@ -94,15 +92,7 @@ int JointSolver::Slot(int i, int j) {
 // by minimum degree (ties: lowest index), and the fill it makes.
 void JointSolver::Symbolic() {
   const int n = static_cast<int>(joints_.size());
-  if (n == 1) {  // one joint (a pendulum): one pivot, no graph
-    slot_keys_.assign(1, {0, 0});
-    pivots_.assign(1, Pivot{0, 0, {}, {}, {}});
-    blocks_.assign(1, Eigen::Matrix3d::Zero());
-    coupling_.assign(1, Eigen::Matrix3d::Zero());
-    residual_.assign(1, Eigen::Vector3d::Zero());
-    dinv_.assign(1, Eigen::Matrix3d::Zero());
-    return;
-  }
+  if (n == 1) return;  // one joint (a pendulum): Solve inverts its block directly
   std::vector<std::set<int>> adj(n);
   for (int i = 0; i < n; ++i)
     for (int k = i + 1; k < n; ++k) {
@@ -228,12 +218,10 @@ void JointSolver::Apply(double t, const double* values, double* rates, const cha
   Prepare(t, values, prescribed, externs);
 
   // Position, velocity and free acceleration of one end of a joint.
-  auto end_state = [&](const End& e, Eigen::Vector3d& arm, Eigen::Vector3d& p, Eigen::Vector3d& v,
-                       Eigen::Vector3d& a) {
+  auto end_state = [&](const End& e, Eigen::Vector3d& p, Eigen::Vector3d& v, Eigen::Vector3d& a) {
     const BodyData& b = bodies_[e.body];
     const int v0 = sys_.bodies[b.body].first_var;
-    arm = e.arm;
-    p = Eigen::Vector3d(values[v0 + kX], values[v0 + kY], values[v0 + kZ]) + arm;
+    p = Eigen::Vector3d(values[v0 + kX], values[v0 + kY], values[v0 + kZ]) + e.arm;
     v = Eigen::Vector3d(values[v0 + kDx], values[v0 + kDy], values[v0 + kDz]) +
         b.R * b.w.cross(e.s);
     Eigen::Vector3d acc = Eigen::Vector3d::Zero(), alpha = Eigen::Vector3d::Zero();
@@ -248,9 +236,9 @@ void JointSolver::Apply(double t, const double* values, double* rates, const cha
   for (int j = 0; j < n; ++j) {
     const JointData& d = joints_[j];
     Eigen::Vector3d pa, va, aa, pb, vb, ab;
-    end_state(d.a, arm_a_[j], pa, va, aa);
+    end_state(d.a, pa, va, aa);
     if (d.b.body >= 0) {
-      end_state(d.b, arm_b_[j], pb, vb, ab);
+      end_state(d.b, pb, vb, ab);
     } else {
       const double* pv = &point_values_[d.point];
       pb = Eigen::Vector3d(pv[0], pv[1], pv[2]);
@@ -265,25 +253,27 @@ void JointSolver::Apply(double t, const double* values, double* rates, const cha
   Distribute(rates, prescribed, magnitude);
 }
 
-// One joint: K is one 3×3 block, solved directly, with the same
-// regularization and refinement as below.
-void JointSolver::SolveOne() {
-  const Eigen::Matrix3d K = Coupling(0, 0);
+// The diagonal block of K + εD: K's block with ε times its mean diagonal
+// added, or the identity where both ends are immovable (the force then acts
+// on nothing).
+Eigen::Matrix3d JointSolver::Regularized(const Eigen::Matrix3d& K) {
   Eigen::Matrix3d A = K;
   const double scale = A.trace() / 3.0;
   if (scale > 0)
     A.diagonal().array() += kRegularization * scale;
   else
-    A.setIdentity();  // both ends immovable: the force acts on nothing
-  const Eigen::Matrix3d inv = A.inverse();
-  const Eigen::Vector3d b = rhs_[0];
-  const Eigen::Vector3d l0 = inv * b;
-  rhs_[0] = l0 + inv * (b - K * l0);
+    A.setIdentity();
+  return A;
 }
 
 void JointSolver::Solve(int refinements) {
-  if (joints_.size() == 1) {
-    SolveOne();
+  if (joints_.size() == 1) {  // one 3×3 block, solved directly
+    const Eigen::Matrix3d K = Coupling(0, 0);
+    const Eigen::Matrix3d inv = Regularized(K).inverse();
+    const Eigen::Vector3d b = rhs_[0];
+    Eigen::Vector3d l = inv * b;
+    for (int pass = 0; pass < refinements; ++pass) l += inv * (b - K * l);
+    rhs_[0] = l;
     return;
   }
   // Assemble K (kept for the refinement) and K + εD in the factor's slots,
@@ -291,14 +281,7 @@ void JointSolver::Solve(int refinements) {
   for (size_t s = 0; s < slot_keys_.size(); ++s) {
     const auto [i, k] = slot_keys_[s];
     coupling_[s] = Coupling(i, k);
-    blocks_[s] = coupling_[s];
-    if (i == k) {
-      const double scale = blocks_[s].trace() / 3.0;
-      if (scale > 0)
-        blocks_[s].diagonal().array() += kRegularization * scale;
-      else
-        blocks_[s].setIdentity();  // both ends immovable: the force acts on nothing
-    }
+    blocks_[s] = i == k ? Regularized(coupling_[s]) : coupling_[s];
   }
   for (const Pivot& p : pivots_) {
     dinv_[p.joint] = blocks_[p.diag].inverse();

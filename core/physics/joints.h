@@ -126,9 +126,9 @@ class JointSolver {
   void Prepare(double t, const double* values, const char* prescribed,
                const expr::ExternFn* externs);
   // Factors K + εD at the prepared state and overwrites rhs_ with the
-  // solution of K λ = rhs_ (refined once against K).
+  // solution of K λ = rhs_, refined `refinements` times against K.
   void Solve(int refinements = 1);
-  void SolveOne();  // Solve for a single joint
+  static Eigen::Matrix3d Regularized(const Eigen::Matrix3d& K);
   void Substitute(std::vector<Eigen::Vector3d>& v) const;
   // Adds the effect of forces (or impulses) rhs_ to `out` (rates or velocities).
   void Distribute(double* out, const char* prescribed, double* magnitude = nullptr) const;
@@ -142,16 +142,14 @@ class JointSolver {
   bool points_constant_ = false;  // every joint point is a constant
   std::vector<double> point_values_;
   // block structure
-  std::vector<std::vector<std::pair<int, int>>> shared_;  // per joint: (other joint, body)
-  std::vector<Pivot> pivots_;                             // in elimination order
-  std::vector<std::pair<int, int>> slot_keys_;            // (row, col) of each slot
-  std::vector<Eigen::Matrix3d> blocks_;                   // K + εD, then its factor
-  std::vector<Eigen::Matrix3d> coupling_;                 // K, per slot
-  std::vector<Eigen::Vector3d> residual_;                 // per joint
-  std::vector<Eigen::Matrix3d> dinv_;                     // per pivot
-  std::vector<Eigen::Vector3d> rhs_;                      // per joint
-  std::vector<Eigen::Vector3d> b_;                        // per joint: the right side solved
-  std::vector<Eigen::Vector3d> arm_a_, arm_b_;            // per joint, world
+  std::vector<Pivot> pivots_;                   // in elimination order
+  std::vector<std::pair<int, int>> slot_keys_;  // (row, col) of each slot
+  std::vector<Eigen::Matrix3d> blocks_;         // K + εD, then its factor
+  std::vector<Eigen::Matrix3d> coupling_;       // K, per slot
+  std::vector<Eigen::Vector3d> residual_;       // per joint
+  std::vector<Eigen::Matrix3d> dinv_;           // per pivot
+  std::vector<Eigen::Vector3d> rhs_;            // per joint
+  std::vector<Eigen::Vector3d> b_;              // per joint: the right side solved
 };
 
 }  // namespace asgard::physics

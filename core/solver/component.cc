@@ -995,12 +995,10 @@ double Component::RestSpan(const Mode& m, double h, const std::vector<int>* rows
       std::fill(est_.data(), est_.data() + n, 0.0);
       joints_->Apply(te, sim_.values(), r_.data(), m.prescribed.data(), &sim_.externs(),
                      est_.data(), 2);
-    }
-    for (size_t j = 0; j < n; ++j) {
-      if (!tested(j) || !joint_rows_[j]) continue;
-      const bool moving = balanced ? std::abs(f[j]) > kRestRounding * std::abs(fg_[j])
-                                   : std::abs(r_[j]) > kRestRounding * (std::abs(fg_[j]) + est_[j]);
-      if (moving) fn = std::max(fn, weighted(j));
+      for (size_t j = 0; j < n; ++j)
+        if (tested(j) && joint_rows_[j] &&
+            std::abs(r_[j]) > kRestRounding * (std::abs(fg_[j]) + est_[j]))
+          fn = std::max(fn, weighted(j));
     }
   }
   if (fn == 0.0) return std::numeric_limits<double>::infinity();

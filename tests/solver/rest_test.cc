@@ -47,11 +47,13 @@ TEST(RestSteps, APendulumHangingAtRestCostsOneStepHoweverLongTheRun) {
   }
 }
 
-// Pendulums of other masses and lengths, and a chain of two (a block solve
-// of its joints), hanging straight down: the joint forces cancel the
-// weights to the last bit, however 1/m and the arms round (a mass of 5 on
-// an arm of 3 rounded 1/m + c L² − c L² away from 1/m).
-TEST(RestSteps, PendulumsOfAnyMassAndAChainOfTwoHangingAtRestCostOneStep) {
+// Pendulums of other masses and lengths, and chains of two, three and five
+// (a block solve of their joints), hanging straight down, cost one rest
+// step. A pendulum's joint force cancels its weight to the last bit, however
+// 1/m and the arm round (a mass of 5 on an arm of 3 rounded
+// 1/m + c L² − c L² away from 1/m); a chain's rates are a cancellation of
+// the weight of the bodies below, tested against the rounding of its terms.
+TEST(RestSteps, PendulumsAndChainsOfAnyMassHangingAtRestCostOneStep) {
   auto hanging = [](int links, double mass, double len0) {
     std::string text = "shape_set ball -desc {-sub {-pos {0 0 0} -sphere 0.5}}\n";
     double y = 0;
