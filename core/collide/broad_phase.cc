@@ -25,10 +25,11 @@
 // moving boxes.  It changes incrementally: a removal bumps the id's
 // generation, so its leaf no longer counts (the node bounds stay
 // conservative); an addition waits in a list each moving box scans; the
-// tree is rebuilt from the live boxes once that list exceeds 8 + R/8 or
-// the dead leaves 8 + R (R live boxes), so a change costs amortised
-// O(log R) and a window with no change costs only the moving boxes'
-// descents.
+// tree is rebuilt from the live boxes, at the next query, once that list
+// exceeds 8 + R/8 or the dead leaves 8 + R (R live boxes), so a change
+// costs amortised O(log R), a window with no change costs only the moving
+// boxes' descents, and a thousand bodies coming to rest at once cost one
+// build (rebuilt as they came, by the same rule, they cost about nine).
 //
 // Rejected alternatives:
 //   * Persistent incremental sweep and prune (insertion sort between calls):
@@ -63,7 +64,6 @@ void BroadPhase::AddResting(int id, const Eigen::Vector3d& lo, const Eigen::Vect
     ++resting_live_;
   resting_gen_[i] = next_gen_++;
   resting_new_.push_back(Box{id, lo, hi, resting_gen_[i]});
-  if (static_cast<long>(resting_new_.size()) > 8 + resting_live_ / 8) RebuildResting();
 }
 
 void BroadPhase::RemoveResting(int id) {
@@ -71,10 +71,12 @@ void BroadPhase::RemoveResting(int id) {
   resting_gen_[static_cast<size_t>(id)] = 0;
   --resting_live_;
   ++resting_dead_;
-  if (resting_dead_ > 8 + resting_live_) RebuildResting();
 }
 
-void BroadPhase::RebuildResting() {
+void BroadPhase::RebuildResting() const {
+  if (static_cast<long>(resting_new_.size()) <= 8 + resting_live_ / 8 &&
+      resting_dead_ <= 8 + resting_live_)
+    return;
   std::vector<Box> live;
   live.reserve(static_cast<size_t>(resting_live_));
   for (const auto* list : {&resting_.boxes, &resting_new_})
@@ -176,6 +178,7 @@ std::vector<std::pair<int, int>> BroadPhase::Pairs() const {
     statics_.Build();
     statics_built_ = true;
   }
+  RebuildResting();
   for (const Box& a : boxes_) {
     statics_.Query(a.lo, a.hi, [&](const Box& s) { pair(a.id, s.id); });
     auto resting = [&](const Box& r) {

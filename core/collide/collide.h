@@ -138,9 +138,10 @@ inline bool BoxesOverlap(const Eigen::Vector3d& a_lo, const Eigen::Vector3d& a_h
 // across Clear, until RemoveResting: they pair with moving boxes only, never
 // with statics or one another.  They live in a second tree, updated
 // incrementally: a removal marks its leaf dead, an addition goes to a short
-// list scanned linearly, and the tree is rebuilt only when that list or the
-// dead leaves outgrow a fraction of the live ones (amortised O(log R) per
-// change), so bodies falling asleep and waking cost nothing per window.
+// list scanned linearly, and the tree is rebuilt (at the next Pairs) only
+// when that list or the dead leaves outgrow a fraction of the live ones
+// (amortised O(log R) per change), so bodies falling asleep and waking cost
+// nothing per window.
 class BroadPhase {
  public:
   // Drops the moving boxes (static and resting ones stay).
@@ -186,15 +187,18 @@ class BroadPhase {
    private:
     int Build(int begin, int end);
   };
-  void RebuildResting();
+  // Rebuilds the resting tree when the additions or dead leaves since the
+  // last build call for it (on each Pairs).
+  void RebuildResting() const;
   std::vector<Box> boxes_;
   // Built on the first Pairs after AddStatic.
   mutable Tree statics_;
   mutable bool statics_built_ = false;
-  Tree resting_;                   // live and dead resting boxes as of the last rebuild
-  std::vector<Box> resting_new_;   // added since
-  std::vector<long> resting_gen_;  // per id: its live resting box's generation, 0: none
-  long resting_live_ = 0, resting_dead_ = 0, next_gen_ = 1;
+  mutable Tree resting_;                  // live and dead resting boxes as of the last rebuild
+  mutable std::vector<Box> resting_new_;  // added since
+  std::vector<long> resting_gen_;         // per id: its live resting box's generation, 0: none
+  long resting_live_ = 0, next_gen_ = 1;
+  mutable long resting_dead_ = 0;
 };
 
 // Motion of a body over an interval: its pose at any time in the interval,

@@ -114,6 +114,34 @@ void ValueRange(const Cubic& p, double s0, double s1, double& lo, double& hi) {
   take((-B + r) / (2 * A));
 }
 
+// Of the spans [s0 + k ds, s0 + (k + 1) ds) ∩ [s0, s1), the start of the
+// first over which p leaves [lo, hi], or −1 when it stays inside on all.
+// Halving the spans where the range leaves: a piece inside throughout costs
+// one range however many spans it has (a rest step over the whole run spans
+// every window), one that leaves costs a range per halving.  Exact: a
+// range's extremes are values at span ends and at the cubic's own critical
+// points, so a range that leaves has a half that leaves.
+double FirstSpanLeaving(const Cubic& p, double s0, double s1, double ds, double lo, double hi) {
+  if (!(s1 > s0)) return -1;
+  const double spans = std::max(1.0, std::ceil((s1 - s0) / ds));
+  auto leaves = [&](double k0, double k1) {
+    double l = kInf, h = -kInf;
+    // The last span ends at s1 however s0 + spans · ds rounds.
+    ValueRange(p, s0 + k0 * ds, k1 >= spans ? s1 : std::min(s1, s0 + k1 * ds), l, h);
+    return l < lo || h > hi;
+  };
+  double k0 = 0, k1 = spans;
+  if (!leaves(k0, k1)) return -1;
+  while (k1 - k0 > 1) {
+    const double mid = std::floor(0.5 * (k0 + k1));
+    if (leaves(k0, mid))
+      k1 = mid;
+    else
+      k0 = mid;
+  }
+  return s0 + k0 * ds;
+}
+
 double RateMax(const Cubic& p, double s0, double s1, double h) {
   double m = std::max(std::abs(p.HermiteDerivative(s0)), std::abs(p.HermiteDerivative(s1)));
   if (p.d != 0) {
@@ -232,6 +260,7 @@ CollisionMonitor::CollisionMonitor(Simulation& sim, double separation)
     : sim_(sim), sys_(sim.system()), separation_(separation) {
   epoch_length_ = (sys_.t1 - sys_.t0) / kEpochs;
   bodies_.resize(sys_.bodies.size());
+  open_index_.assign(sys_.bodies.size(), -1);
   bodies_of_component_.resize(sim.component_count());
   version_.assign(sys_.bodies.size(), 0);
   latest_event_.assign(sys_.bodies.size(), -kInf);
@@ -396,22 +425,36 @@ double CollisionMonitor::EpochStart(long k) const {
 
 void CollisionMonitor::UpdateEnd(int b) {
   BodyInfo& info = bodies_[b];
-  if (info.components.empty()) {
-    info.end = sys_.t1;  // static: known for all time
-    return;
+  double end = sys_.t1;  // static: known for all time
+  if (!info.components.empty()) {
+    end = kInf;
+    for (int c : info.components) end = std::min(end, sim_.component(c).t_end());
   }
-  double end = kInf;
-  for (int c : info.components) end = std::min(end, sim_.component(c).t_end());
   info.end = end;
+  // Keep open_ the collidable bodies computed short of the end.
+  const size_t i = static_cast<size_t>(b);
+  const bool open = info.collidable && end < sys_.t1;
+  if (open && open_index_[i] < 0) {
+    open_index_[i] = static_cast<int>(open_.size());
+    open_.push_back(b);
+  } else if (!open && open_index_[i] >= 0) {
+    const int last = open_.back();
+    open_[static_cast<size_t>(open_index_[i])] = last;
+    open_index_[static_cast<size_t>(last)] = open_index_[i];
+    open_.pop_back();
+    open_index_[i] = -1;
+  }
 }
 
 void CollisionMonitor::StartEpoch(long k) {
   epoch_ = idle_ ? kEpochs : k;
   pending_ = 0;
   if (epoch_ >= kEpochs) return;
+  // Only bodies computed short of the end can be short of this window's
+  // end: a thousand bodies resting to the end cost nothing per window.
   const double e1 = EpochStart(epoch_ + 1);
-  for (const BodyInfo& b : bodies_)
-    if (b.collidable && b.end < e1) ++pending_;
+  for (int b : open_)
+    if (bodies_[static_cast<size_t>(b)].end < e1) ++pending_;
 }
 
 void CollisionMonitor::AfterStep(int component) {
@@ -561,20 +604,17 @@ void CollisionMonitor::FollowLoose(int b) {
       if (h <= 0) continue;
       const Cubic p = HermiteCubic(w.x(k)[li], w.f(k)[li], w.x(k + 1)[li], w.f(k + 1)[li], h,
                                    w.bubble(k + 1)[li]);
-      // The piece in spans of a window (a ballistic piece may last the whole
-      // run): the body leaves no earlier than the first span that leaves.
-      const double s1 = std::min(1.0, (t1 - w.time(k)) / h), ds = epoch_length_ / h;
-      bool left = false;
-      for (double s0 = std::max(0.0, (t0 - w.time(k)) / h); s0 < s1; s0 += ds) {
-        double lo = kInf, hi = -kInf;
-        ValueRange(p, s0, std::min(s1, s0 + ds), lo, hi);
-        if (lo < loose_lo_[i][a] || hi > loose_hi_[i][a]) {
-          loose_until_[i] = std::min(loose_until_[i], w.time(k) + s0 * h);
-          left = true;
-          break;
-        }
+      // The piece in spans of a window (a ballistic piece or a rest step
+      // may last the whole run): the body leaves no earlier than the first
+      // span that leaves.
+      const double s0 = std::max(0.0, (t0 - w.time(k)) / h);
+      const double s1 = std::min(1.0, (t1 - w.time(k)) / h);
+      const double leave =
+          FirstSpanLeaving(p, s0, s1, epoch_length_ / h, loose_lo_[i][a], loose_hi_[i][a]);
+      if (leave >= 0) {
+        loose_until_[i] = std::min(loose_until_[i], w.time(k) + leave * h);
+        break;
       }
-      if (left) break;
     }
   }
   loose_scanned_[i] = t1;

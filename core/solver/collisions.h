@@ -260,6 +260,9 @@ class CollisionMonitor {
   long epoch_ = 0;     // current epoch
   bool idle_ = false;  // no pair can collide: no windows are checked
   long pending_ = 0;   // collidable bodies not yet computed past its end
+  // The collidable bodies whose motion is computed short of the run's end
+  // (BodyInfo::end < t1), with each one's index there (-1: not such a body).
+  std::vector<int> open_, open_index_;
   std::vector<BodyInfo> bodies_;
   collide::BroadPhase broad_;  // the static bodies' boxes, and each window's moving ones
   // The current window's boxes (per body, with the version they were
