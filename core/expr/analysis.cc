@@ -119,10 +119,15 @@ std::optional<Affine> Difference(const Pool& pool, NodeId x, NodeId y) {
 }  // namespace
 
 std::vector<int> Pool::Variables(NodeId e) const {
-  if (e >= nodes_.size()) throw std::invalid_argument("expr::Pool::Variables: id out of range");
+  return Variables(std::span<const NodeId>(&e, 1));
+}
+
+std::vector<int> Pool::Variables(std::span<const NodeId> roots) const {
+  for (NodeId e : roots)
+    if (e >= nodes_.size()) throw std::invalid_argument("expr::Pool::Variables: id out of range");
   std::vector<int> vars;
   std::unordered_set<NodeId> seen;
-  std::vector<NodeId> stack{e};
+  std::vector<NodeId> stack(roots.begin(), roots.end());
   while (!stack.empty()) {
     const NodeId id = stack.back();
     stack.pop_back();

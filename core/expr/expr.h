@@ -159,7 +159,9 @@ class Pool {
 
   // Analysis.
   std::vector<int> Variables(NodeId e) const;  // sorted, unique
-  bool DependsOnTime(NodeId e) const;          // Time or Extern inside
+  // The variables of all of `roots` (one walk over their shared nodes).
+  std::vector<int> Variables(std::span<const NodeId> roots) const;
+  bool DependsOnTime(NodeId e) const;  // Time or Extern inside
   // Times at which `e` may jump: every comparison between t and a constant
   // (t > 2, t <= 0.5 ...), also floor/ceil/sign/fmod/abs of an affine function
   // of t where the jump or kink time can be solved for within [t0, t1].
@@ -218,7 +220,7 @@ class Tape {
 
   void Evaluate(double t, const double* x, double* out, const ExternFn* ext = nullptr) const;
 
-  size_t instruction_count() const { return code_.size(); }
+  size_t instruction_count() const { return loads_.size() + code_.size(); }
   size_t output_count() const { return outputs_.size(); }
 
  private:
@@ -229,8 +231,13 @@ class Tape {
     int32_t dst = 0;   // destination register
     int32_t a = 0;     // register operand / var index / extern fn / operands_ start
     int32_t b = 0;     // register operand / extern order / operand count
-    int32_t c = 0;     // third register operand (Select)
+    int32_t c = 0;     // third register operand (Select, 3-ary Add/Mul)
   };
+  struct Load {
+    int32_t dst;    // register
+    int32_t index;  // variable
+  };
+  std::vector<Load> loads_;  // the variables read, copied into registers first
   std::vector<Instr> code_;
   std::vector<int32_t> operands_;  // operand registers of n-ary Add/Mul
   std::vector<int32_t> outputs_;   // register per output
