@@ -979,10 +979,17 @@ double Component::RestSpan(const Mode& m, double h, const std::vector<int>* rows
   // free rates are evaluated (this runs at every step of such a component).
   const double t = wave_.time(k);
   auto weighted = [&](size_t j) { return std::abs(f[j]) / (o.atol + o.rtol * std::abs(x[j])); };
+  // A row whose rate alone rules the rest step out ends the test there (the
+  // test on the largest rate is the same test: kRestFraction / fn falls as
+  // fn grows); a moving body's first row does.
+  auto too_fast = [&](double w) { return w > 0.0 && !(kRestFraction / w >= kRestMinGain * h); };
   double fn = 0.0;
   for (size_t j = 0; j < n; ++j)
-    if (tested(j) && !(joints_ && joint_rows_[j])) fn = std::max(fn, weighted(j));
-  if (fn > 0.0 && !(kRestFraction / fn >= kRestMinGain * h)) return 0.0;
+    if (tested(j) && !(joints_ && joint_rows_[j])) {
+      const double w = weighted(j);
+      if (too_fast(w)) return 0.0;
+      fn = std::max(fn, w);
+    }
   // A rate within rounding of the free rate that the joint forces balanced
   // (gravity against the joint holding a pendulum) counts as zero.
   if (joints_) {
