@@ -112,12 +112,17 @@ await browserTest(asgard, scene, 'shape', async ({ check, url, context }) => {
   check((await vertices()) === 8 && !(await desc()).includes(`{${p9.join(' ')}}`), 'the point is gone from the editor and the text');
 
   // Undo: the vertex back, then the radius, then inside/outside moves.
-  await stateAfter(() => page.click('#undo'));
-  check((await vertices()) === 9, 'Undo brings the deleted vertex back');
-  await stateAfter(() => page.click('#undo'));
-  check(/-pos \{0 2 0\} -sphere 0.5\}/.test(await desc()), 'the next Undo the radius (the whole drag)');
-  await stateAfter(() => page.click('#undo'));
-  check((await desc()) === text1, 'and the next the drag into the cube, in one step');
+  // Each is waited for in the text itself before the next click: the state
+  // count can move for a message of the step before (the deletion's
+  // re-simulation), which under a slow build arrives after the click.
+  const undone = async (what, ok) => {
+    await page.click('#undo');
+    const seen = await waitFor(async () => ok(await desc()), what);
+    return seen || console.log(`     -desc is {${await desc()}}`) || false;
+  };
+  check(await undone('the vertex back', async () => (await vertices()) === 9), 'Undo brings the deleted vertex back');
+  check(await undone('the radius', (d) => /-pos \{0 2 0\} -sphere 0.5\}/.test(d)), 'the next Undo the radius (the whole drag)');
+  check(await undone('the drag into the cube', (d) => d === text1), 'and the next the drag into the cube, in one step');
   await page.locator('#shape-editor canvas').screenshot({ path: join(outDir, '4-undone.png') });
 
   // The cube's position handle moves the whole piece: -pos changes, the
