@@ -9,6 +9,8 @@
 #include <cmath>
 #include <limits>
 
+#include "core/solver/hermite_range.h"
+
 namespace asgard::solver {
 namespace {
 
@@ -18,6 +20,7 @@ constexpr double kMarginRelative = 0.02;  // contact points kept up to this gap 
 constexpr int kSleepEvents = 12;          // resting events at rest in a row before sleep
 constexpr int kSweeps = 200;              // contact solver sweeps at most
 constexpr int kJamEvents = 50;            // impacts at one instant before they count as a jam
+constexpr double kHoldTurn = 4.0;         // hop heights a held pair's bodies may turn by
 // The landing gap: at least this fraction of the smallest body's radius
 // (double precision cannot place bodies closer meaningfully).
 constexpr double kMinSeparation = 1e-8;
@@ -55,102 +58,6 @@ bool ImpactOrder(const Impact& x, const Impact& y) {
   return x.t != y.t ? x.t < y.t : std::tie(x.a, x.b) < std::tie(y.a, y.b);
 }
 constexpr double kInf = std::numeric_limits<double>::infinity();
-
-// Range of the cubic Hermite interpolant on [0, 1] ⊇ [s0, s1] (value or
-// derivative), exactly: endpoints and interior critical points.
-// One interval of a waveform: the Hermite cubic plus the explicit method's
-// bubble e s²(1−s)² (waveform.h), s ∈ [0, 1].
-struct Cubic {
-  double a, b, c, d;  // cubic part: a + b s + c s² + d s³
-  double e = 0.0;     // bubble coefficient
-  double Hermite(double s) const { return a + s * (b + s * (c + s * d)); }
-  double HermiteDerivative(double s) const { return b + s * (2 * c + 3 * s * d); }
-  double operator()(double s) const {
-    const double u = s * (1 - s);
-    return Hermite(s) + e * u * u;
-  }
-  double Derivative(double s) const {
-    return HermiteDerivative(s) + e * 2 * s * (1 - s) * (1 - 2 * s);
-  }
-  double Second(double s) const { return 2 * c + 6 * d * s + e * (2 - 12 * s + 12 * s * s); }
-};
-
-Cubic HermiteCubic(double x0, double f0, double x1, double f1, double h, double bubble) {
-  const double m0 = f0 * h, m1 = f1 * h;
-  return {x0, m0, -3 * x0 - 2 * m0 + 3 * x1 - m1, 2 * x0 + m0 - 2 * x1 + m1, bubble};
-}
-
-// Critical points of a quadratic q(s) = b + 2c s + 3d s² (for the value) or
-// of the linear derivative of the derivative (for the rate).
-void ValueRange(const Cubic& p, double s0, double s1, double& lo, double& hi) {
-  // The cubic's exact range, widened by the bubble's (0 ≤ s²(1−s)² ≤ 1/16).
-  struct Widen {
-    const Cubic& p;
-    double &lo, &hi;
-    ~Widen() {
-      if (p.e > 0)
-        hi += p.e / 16;
-      else
-        lo += p.e / 16;
-    }
-  } widen{p, lo, hi};
-  auto take = [&](double s) {
-    if (s < s0 || s > s1) return;
-    const double v = p.Hermite(s);
-    lo = std::min(lo, v);
-    hi = std::max(hi, v);
-  };
-  take(s0);
-  take(s1);
-  const double A = 3 * p.d, B = 2 * p.c, C = p.b;
-  if (A == 0) {
-    if (B != 0) take(-C / B);
-    return;
-  }
-  const double disc = B * B - 4 * A * C;
-  if (disc < 0) return;
-  const double r = std::sqrt(disc);
-  take((-B - r) / (2 * A));
-  take((-B + r) / (2 * A));
-}
-
-// Of the spans [s0 + k ds, s0 + (k + 1) ds) ∩ [s0, s1), the start of the
-// first over which p leaves [lo, hi], or −1 when it stays inside on all.
-// Halving the spans where the range leaves: a piece inside throughout costs
-// one range however many spans it has (a rest step over the whole run spans
-// every window), one that leaves costs a range per halving.  Exact: a
-// range's extremes are values at span ends and at the cubic's own critical
-// points, so a range that leaves has a half that leaves.
-double FirstSpanLeaving(const Cubic& p, double s0, double s1, double ds, double lo, double hi) {
-  if (!(s1 > s0)) return -1;
-  const double spans = std::max(1.0, std::ceil((s1 - s0) / ds));
-  auto leaves = [&](double k0, double k1) {
-    double l = kInf, h = -kInf;
-    // The last span ends at s1 however s0 + spans · ds rounds.
-    ValueRange(p, s0 + k0 * ds, k1 >= spans ? s1 : std::min(s1, s0 + k1 * ds), l, h);
-    return l < lo || h > hi;
-  };
-  double k0 = 0, k1 = spans;
-  if (!leaves(k0, k1)) return -1;
-  while (k1 - k0 > 1) {
-    const double mid = std::floor(0.5 * (k0 + k1));
-    if (leaves(k0, mid))
-      k1 = mid;
-    else
-      k0 = mid;
-  }
-  return s0 + k0 * ds;
-}
-
-double RateMax(const Cubic& p, double s0, double s1, double h) {
-  double m = std::max(std::abs(p.HermiteDerivative(s0)), std::abs(p.HermiteDerivative(s1)));
-  if (p.d != 0) {
-    const double s = -p.c / (3 * p.d);
-    if (s > s0 && s < s1) m = std::max(m, std::abs(p.HermiteDerivative(s)));
-  }
-  // |d/ds e s²(1−s)²| ≤ |e| √3/18 < 0.1 |e|.
-  return (m + 0.1 * std::abs(p.e)) / h;
-}
 
 // Points of a piece's support feature in direction n (world): the vertices
 // within `tol` of the extreme, or a sphere's single support point.
@@ -260,7 +167,7 @@ CollisionMonitor::CollisionMonitor(Simulation& sim, double separation)
     : sim_(sim), sys_(sim.system()), separation_(separation) {
   epoch_length_ = (sys_.t1 - sys_.t0) / kEpochs;
   bodies_.resize(sys_.bodies.size());
-  open_index_.assign(sys_.bodies.size(), -1);
+  open_.Reset(sys_.bodies.size());
   bodies_of_component_.resize(sim.component_count());
   version_.assign(sys_.bodies.size(), 0);
   latest_event_.assign(sys_.bodies.size(), -kInf);
@@ -325,12 +232,9 @@ CollisionMonitor::CollisionMonitor(Simulation& sim, double separation)
   loose_version_.assign(n, -1);
   near_.resize(n);
   near_static_.assign(n, 0);
-  moving_index_.assign(n, -1);
+  moving_.Reset(n);
   for (size_t b = 0; b < n; ++b)
-    if (bodies_[b].collidable && sys_.bodies[b].first_var >= 0) {
-      moving_index_[b] = static_cast<int>(moving_.size());
-      moving_.push_back(static_cast<int>(b));
-    }
+    if (bodies_[b].collidable && sys_.bodies[b].first_var >= 0) moving_.Insert(static_cast<int>(b));
   // The static bodies' boxes, widened by the landing gap, in the broad
   // phase's tree for the whole run.
   for (size_t b = 0; b < bodies_.size(); ++b)
@@ -432,18 +336,10 @@ void CollisionMonitor::UpdateEnd(int b) {
   }
   info.end = end;
   // Keep open_ the collidable bodies computed short of the end.
-  const size_t i = static_cast<size_t>(b);
-  const bool open = info.collidable && end < sys_.t1;
-  if (open && open_index_[i] < 0) {
-    open_index_[i] = static_cast<int>(open_.size());
-    open_.push_back(b);
-  } else if (!open && open_index_[i] >= 0) {
-    const int last = open_.back();
-    open_[static_cast<size_t>(open_index_[i])] = last;
-    open_index_[static_cast<size_t>(last)] = open_index_[i];
-    open_.pop_back();
-    open_index_[i] = -1;
-  }
+  if (info.collidable && end < sys_.t1)
+    open_.Insert(b);
+  else
+    open_.Erase(b);
 }
 
 void CollisionMonitor::StartEpoch(long k) {
@@ -495,11 +391,7 @@ void CollisionMonitor::Rest(int b) {
   broad_.AddResting(b, box_lo_[i], box_hi_[i]);
   rest_by_from_.insert({rest_from_[i], b});
   rest_by_until_.insert({rest_until_[i], b});
-  const int last = moving_.back();
-  moving_[static_cast<size_t>(moving_index_[i])] = last;
-  moving_index_[static_cast<size_t>(last)] = moving_index_[i];
-  moving_.pop_back();
-  moving_index_[i] = -1;
+  moving_.Erase(b);
 }
 
 void CollisionMonitor::Unrest(int b) {
@@ -510,8 +402,7 @@ void CollisionMonitor::Unrest(int b) {
   loose_version_[i] = -1;
   rest_by_from_.erase({rest_from_[i], b});
   rest_by_until_.erase({rest_until_[i], b});
-  moving_index_[i] = static_cast<int>(moving_.size());
-  moving_.push_back(b);
+  moving_.Insert(b);
 }
 
 std::optional<std::pair<double, double>> CollisionMonitor::HeldSpan(int b, double t0,
@@ -1671,6 +1562,30 @@ void CollisionMonitor::RespondResting(const Impact& impact) {
         scale, sys_.bodies[body].mass *
                    (acc[body].norm() * hop + states[static_cast<size_t>(index[body])].v.norm()));
   collide::SolveContacts(states, contacts, kSweeps, 1e-9 * scale + 1e-300);
+  // A pair is held (not searched until its hop lands) only where the hop
+  // alone can bring its points together again.  A point leaving at its
+  // target lands at the hop's end, one slower by δ lands δ·hop deeper: the
+  // solve must have met every target to within the hop's height over the
+  // hop.  A translation cannot bring two convex bodies that separate at
+  // their contact points together, a turn can: a tumbling cube's next
+  // corner swings in.  Each body's turn over the hop must move its points
+  // by at most kHoldTurn hop heights.  Other pairs are searched as usual.
+  std::set<std::pair<int, int>> unheld;
+  auto turn = [&](int body, const collide::BodyState& st) {
+    return bodies_[body].radius * st.w.norm() * hop;
+  };
+  for (size_t k = 0; k < contacts.size(); ++k) {
+    const collide::SolverContact& c = contacts[k];
+    const collide::BodyState& sa = states[static_cast<size_t>(c.a)];
+    const collide::BodyState& sb = states[static_cast<size_t>(c.b)];
+    const Eigen::Vector3d va = sa.v + sa.w.cross(c.point - sa.com);
+    const Eigen::Vector3d vb = sb.v + sb.w.cross(c.point - sb.com);
+    const auto [a, b] = contact_pair[k];
+    const double height = AbsorbGap(a, b);
+    if ((vb - va).dot(c.normal) < c.target - height / hop ||
+        turn(a, sa) + turn(b, sb) > kHoldTurn * height)
+      unheld.insert({a, b});
+  }
   Impact recorded = impact;
   recorded.resting = true;
   recorded.hop = hop;
@@ -1718,7 +1633,7 @@ void CollisionMonitor::RespondResting(const Impact& impact) {
       return it == recorded.bodies.end() ? -1 : static_cast<int>(it - recorded.bodies.begin());
     };
     for (size_t k = 0; k < pairs.size(); ++k) {
-      if (skipped[k]) continue;
+      if (skipped[k] || unheld.count({pairs[k].a, pairs[k].b})) continue;
       const int ia = position(pairs[k].a), ib = position(pairs[k].b);
       if (ia >= 0 && ib >= 0) recorded.held.push_back(std::minmax(ia, ib));
     }

@@ -48,6 +48,7 @@
 
 #include "core/collide/collide.h"
 #include "core/scene/scene.h"
+#include "core/solver/indexed_set.h"
 #include "core/solver/simulation.h"
 
 namespace asgard::solver {
@@ -261,8 +262,8 @@ class CollisionMonitor {
   bool idle_ = false;  // no pair can collide: no windows are checked
   long pending_ = 0;   // collidable bodies not yet computed past its end
   // The collidable bodies whose motion is computed short of the run's end
-  // (BodyInfo::end < t1), with each one's index there (-1: not such a body).
-  std::vector<int> open_, open_index_;
+  // (BodyInfo::end < t1).
+  IndexedSet open_;
   std::vector<BodyInfo> bodies_;
   collide::BroadPhase broad_;  // the static bodies' boxes, and each window's moving ones
   // The current window's boxes (per body, with the version they were
@@ -272,9 +273,8 @@ class CollisionMonitor {
   std::vector<Eigen::Vector3d> box_lo_, box_hi_;
   std::vector<std::pair<int, int>> window_pairs_;
   // The collidable bodies that are not static and not resting (their boxes
-  // are computed per window), with each one's index there (-1: resting or
-  // not such a body).
-  std::vector<int> moving_, moving_index_;
+  // are computed per window).
+  IndexedSet moving_;
   // Bodies whose boxes were computed for the current window, and the
   // window's serial number each was last boxed in.
   std::vector<int> window_moving_;

@@ -151,5 +151,64 @@ TEST(BroadPhase, RestingBoxesAddedAndRemovedPairOnlyWithMovingOnes) {
   }
 }
 
+// The resting tree is rebuilt lazily, at the first Pairs after enough
+// additions or removals: batches of every size between two queries (one
+// box, hundreds at once, the same body re-added several times, all removed)
+// give exactly the pairs of a broad phase built afresh from the final
+// resting set, and of brute force.
+TEST(BroadPhase, RestingBatchesOfAnySizeGiveThePairsOfAFreshBuild) {
+  std::mt19937_64 rng(5);
+  std::uniform_real_distribution<double> position(0.0, 10.0), size(0.0, 1.2);
+  std::uniform_int_distribution<int> pick(0, 399);
+  auto random_box = [&](int id) {
+    const Eigen::Vector3d lo(position(rng), position(rng), position(rng));
+    return Aabb{id, lo, lo + Eigen::Vector3d(size(rng), size(rng), size(rng))};
+  };
+  std::vector<Aabb> boxes;
+  for (int i = 0; i < 400; ++i) boxes.push_back(random_box(i));
+  std::vector<char> resting(400, 0);
+  BroadPhase bp;
+  bp.AddStatic(1000, {0, 0, -1}, {10, 10, 0.3});  // a floor
+  const int batches[] = {1, 300, 2, 150, 40, 1, 400, 9, 0, 250};
+  for (int round = 0; round < 10; ++round) {
+    for (int k = 0; k < batches[round]; ++k) {
+      const int i = pick(rng);
+      if (resting[i] && (round == 3 || k % 3 == 0)) {
+        bp.RemoveResting(i);
+        resting[i] = 0;
+      } else {  // first rest, or a re-add at a new place
+        boxes[i] = random_box(i);
+        bp.AddResting(i, boxes[i].lo, boxes[i].hi);
+        resting[i] = 1;
+      }
+    }
+    if (round == 8)  // everything wakes
+      for (int i = 0; i < 400; ++i)
+        if (resting[i]) {
+          bp.RemoveResting(i);
+          resting[i] = 0;
+        }
+    BroadPhase fresh;
+    fresh.AddStatic(1000, {0, 0, -1}, {10, 10, 0.3});
+    std::vector<Aabb> all = {Aabb{1000, {0, 0, -1}, {10, 10, 0.3}}};
+    bp.Clear();
+    for (const Aabb& b : boxes) {
+      all.push_back(b);
+      if (resting[b.id]) {
+        fresh.AddResting(b.id, b.lo, b.hi);
+      } else {
+        bp.Add(b.id, b.lo, b.hi);
+        fresh.Add(b.id, b.lo, b.hi);
+      }
+    }
+    auto expected = BruteForce(all);
+    auto still = [&](int id) { return id >= 1000 || resting[id]; };
+    std::erase_if(expected, [&](const auto& p) { return still(p.first) && still(p.second); });
+    const auto pairs = bp.Pairs();
+    ASSERT_EQ(pairs, fresh.Pairs()) << "round " << round;
+    ASSERT_EQ(pairs, expected) << "round " << round;
+  }
+}
+
 }  // namespace
 }  // namespace asgard::collide
