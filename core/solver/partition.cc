@@ -10,9 +10,17 @@ namespace {
 
 // Emits components in an order where each component follows every component
 // reachable from it along `reads` arcs, i.e. its dependencies.
+// An island's range (ReadGraph::islands) comes out whole, where the search
+// would have reached its first variable: no arc enters it, so every one of
+// its components would have come out then, one after another.
 std::vector<std::vector<int>> Tarjan(const ReadGraph& reads) {
   const int n = reads.size();
   std::vector<int> index(n, -1), low(n, 0);
+  std::vector<int> island(n, 0);  // at an island's first variable: its size
+  for (const auto& [first, count] : reads.islands) {
+    island[first] = count;
+    for (int v = first; v < first + count; ++v) index[v] = 0;  // never searched
+  }
   std::vector<char> on_stack(n, 0);
   std::vector<int> stack;
   std::vector<std::vector<int>> out;
@@ -23,6 +31,11 @@ std::vector<std::vector<int>> Tarjan(const ReadGraph& reads) {
   std::vector<Frame> calls;
   int counter = 0;
   for (int root = 0; root < n; ++root) {
+    if (island[root] > 0) {
+      out.emplace_back(island[root]);
+      std::iota(out.back().begin(), out.back().end(), root);
+      continue;
+    }
     if (index[root] >= 0) continue;
     calls.push_back({root, 0});
     index[root] = low[root] = counter++;
@@ -97,11 +110,17 @@ void Contract(const ReadGraph& reads, const std::vector<int>& head, Partition& p
     fused.emplace_back();
   }
   if (static_cast<int>(fused.size()) == nc) return;
+  std::vector<int> members(nc, 0);  // per head
+  for (int c = 0; c < nc; ++c) ++members[head[c]];
   for (int c = 0; c < nc; ++c) {
     auto& group = fused[slot[head[c]]];
-    group.insert(group.end(), p.components[c].begin(), p.components[c].end());
+    if (members[head[c]] == 1)  // a group of one keeps its sorted list
+      group = std::move(p.components[c]);
+    else
+      group.insert(group.end(), p.components[c].begin(), p.components[c].end());
   }
-  for (auto& g : fused) std::sort(g.begin(), g.end());
+  for (int c = 0; c < nc; ++c)
+    if (head[c] == c && members[c] > 1) std::sort(fused[slot[c]].begin(), fused[slot[c]].end());
   p.components = std::move(fused);
   LinkComponents(reads, p);
 }

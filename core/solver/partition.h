@@ -16,6 +16,7 @@
 #pragma once
 
 #include <span>
+#include <utility>
 #include <vector>
 
 namespace asgard::solver {
@@ -28,6 +29,11 @@ struct ReadGraph {
   ReadGraph() = default;      // not an aggregate: a braced list means lists per variable
   std::vector<int> start{0};  // size: variables + 1
   std::vector<int> vars;
+  // Ranges of variables (first, count) that form a body's island: they read
+  // only each other and no variable outside reads them.  Their arcs are left
+  // out (of() is empty for them) and, with body fusion, each range becomes
+  // one component — the one the fusion would make of it — without a search.
+  std::vector<std::pair<int, int>> islands;
   int size() const { return static_cast<int>(start.size()) - 1; }
   std::span<const int> of(int i) const {
     return {vars.data() + start[i], static_cast<size_t>(start[i + 1] - start[i])};

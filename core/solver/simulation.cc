@@ -18,7 +18,13 @@ constexpr int kRunSteps = 64;
 // this many steps without being cut back (StepOnce).
 constexpr int kCalmSteps = 32;
 
-ReadGraph ReadsOf(const physics::EquationSystem& sys) {
+// The reference graph.  With `islands` (bodies fused: PartitionEquations'
+// body_of), a body whose equations read only its own variables and whose
+// variables no other equation reads is listed as an island and its arcs are
+// left out: it is one component whatever they are, and a scene of many
+// idle bodies costs one walk of each body's expressions, not one per
+// variable, a sort per row and a search of its cycles.
+ReadGraph ReadsOf(const physics::EquationSystem& sys, bool islands) {
   // An exact joint's force depends on the whole state of every body it
   // connects, directly or through other joints: a jointed group must be one
   // component.  Each body's acceleration rows read its own state and the
@@ -55,56 +61,109 @@ ReadGraph ReadsOf(const physics::EquationSystem& sys) {
   for (int g = 0; g < nb; ++g)
     if (last[g] >= 0) next[last[g]] = first[g];
 
-  // One walk per variable over its expressions' nodes, marked with the
-  // variable's stamp (Pool::Variables builds a hash set per call, which was
-  // a quarter of a resting body's set-up); variables read are deduplicated
-  // by the same stamp and appended to one flat array.
+  // Walks over expression nodes marked with a fresh stamp each (Pool::
+  // Variables builds a hash set per call, which was a quarter of a resting
+  // body's set-up); `read` sees each variable once per walk.
   const size_t nv = sys.variables.size();
-  ReadGraph g;
-  g.start.reserve(nv + 1);
-  g.vars.reserve(8 * nv);
   std::vector<uint32_t> stamp(sys.pool.size(), 0), seen(nv, 0);
+  uint32_t mark = 0;
   std::vector<expr::NodeId> stack;
-  for (size_t i = 0; i < nv; ++i) {
-    const uint32_t mark = static_cast<uint32_t>(i + 1);
-    const size_t begin = g.vars.size();
-    auto read = [&](int v) {
-      if (seen[v] == mark) return;
-      seen[v] = mark;
-      g.vars.push_back(v);
-    };
-    const auto& v = sys.variables[i];
-    stack.assign(1, v.rhs);
-    for (const auto& o : v.overrides) stack.push_back(o.expr);
+  auto walk = [&](size_t begin, size_t end, auto&& read) {
+    ++mark;
+    stack.clear();
+    for (size_t i = begin; i < end; ++i) {
+      const auto& v = sys.variables[i];
+      stack.push_back(v.rhs);
+      for (const auto& o : v.overrides) stack.push_back(o.expr);
+    }
     while (!stack.empty()) {
       const expr::NodeId id = stack.back();
       stack.pop_back();
       if (stamp[id] == mark) continue;
       stamp[id] = mark;
       const expr::Node& n = sys.pool.node(id);
-      if (n.op == expr::Op::kVar) read(n.index);
+      if (n.op == expr::Op::kVar && seen[n.index] != mark) {
+        seen[n.index] = mark;
+        read(n.index);
+      }
       stack.insert(stack.end(), n.args.begin(), n.args.end());
     }
-    if (v.body >= 0 && next[v.body] >= 0) {
-      const int own = sys.bodies[v.body].first_var;
-      const int slot = static_cast<int>(i) - own;
-      if (slot == physics::kDx || slot == physics::kDy || slot == physics::kDz ||
-          slot == physics::kW1 || slot == physics::kW2 || slot == physics::kW3) {
-        for (int k = 0; k < physics::kBodySlots; ++k) read(own + k);
-        read(sys.bodies[next[v.body]].first_var);
+  };
+
+  // Islands: a body with state, no override, alone in its joint group (if
+  // any), whose rows read only its own variables...
+  std::vector<char> island(nb, 0);
+  if (islands)
+    for (int b = 0; b < nb; ++b) {
+      const int v0 = sys.bodies[b].first_var;
+      if (v0 < 0 || (next[b] >= 0 && next[b] != b)) continue;
+      bool closed = static_cast<size_t>(v0 + physics::kBodySlots) <= nv;
+      for (int k = 0; closed && k < physics::kBodySlots; ++k) {
+        const auto& v = sys.variables[v0 + k];
+        closed = v.body == b && v.overrides.empty();
       }
+      if (!closed) continue;
+      walk(v0, v0 + physics::kBodySlots,
+           [&](int r) { closed = closed && r >= v0 && r < v0 + physics::kBodySlots; });
+      island[b] = closed;
     }
-    std::sort(g.vars.begin() + static_cast<std::ptrdiff_t>(begin), g.vars.end());
-    g.start.push_back(static_cast<int>(g.vars.size()));
+  auto island_of = [&](int v) {
+    const int b = sys.variables[v].body;
+    return b >= 0 && island[b] ? b : -1;
+  };
+  // ...and that no other row reads.  Rows are walked in order, so a body
+  // found read by a later row has had its own rows skipped: it is no island,
+  // and the graph is built again (only once: its rows read no other body).
+  for (;;) {
+    ReadGraph g;
+    g.start.reserve(nv + 1);
+    g.vars.reserve(8 * nv);
+    bool spoiled = false;
+    for (size_t i = 0; i < nv; ++i) {
+      const int own = island_of(static_cast<int>(i));
+      if (own >= 0) {
+        if (static_cast<int>(i) == sys.bodies[own].first_var)
+          g.islands.push_back({static_cast<int>(i), physics::kBodySlots});
+        g.start.push_back(static_cast<int>(g.vars.size()));
+        continue;
+      }
+      const size_t begin = g.vars.size();
+      auto read = [&](int r) {
+        if (const int b = island_of(r); b >= 0) {
+          island[b] = 0;
+          spoiled = true;
+        }
+        g.vars.push_back(r);
+      };
+      walk(i, i + 1, read);
+      const auto& v = sys.variables[i];
+      if (v.body >= 0 && next[v.body] >= 0) {
+        const int first_var = sys.bodies[v.body].first_var;
+        const int slot = static_cast<int>(i) - first_var;
+        if (slot == physics::kDx || slot == physics::kDy || slot == physics::kDz ||
+            slot == physics::kW1 || slot == physics::kW2 || slot == physics::kW3) {
+          for (int k = 0; k <= physics::kBodySlots; ++k) {
+            const int r =
+                k < physics::kBodySlots ? first_var + k : sys.bodies[next[v.body]].first_var;
+            if (seen[r] != mark) {
+              seen[r] = mark;
+              read(r);
+            }
+          }
+        }
+      }
+      std::sort(g.vars.begin() + static_cast<std::ptrdiff_t>(begin), g.vars.end());
+      g.start.push_back(static_cast<int>(g.vars.size()));
+    }
+    if (!spoiled) return g;
   }
-  return g;
 }
 
 }  // namespace
 
 Simulation::Simulation(const physics::EquationSystem& system, SolverOptions options)
     : sys_(system), options_(options) {
-  reads_ = ReadsOf(sys_);
+  reads_ = ReadsOf(sys_, options_.partition && options_.fuse_chains && options_.fuse_bodies);
   // Per-body fusion: a body whose variables a trajectory prescribes stays
   // apart (a prescribed row puts its whole component on the implicit path).
   std::vector<int> body_of;

@@ -289,6 +289,25 @@ TEST(Partition, AFreeBodyIsOneComponentAndABodyCoupledToAnotherIsNot) {
   EXPECT_EQ(size_of("b4", physics::kX), static_cast<size_t>(physics::kBodySlots));
   for (size_t c = 0; c < static_cast<size_t>(s2.component_count()); ++c)
     for (int u : s2.partition().upstream[c]) EXPECT_LT(u, static_cast<int>(c));
+  // A body whose rows read only its own variables but which another body
+  // reads is no island, whether the reader comes before or after it: s's x
+  // chain joins r's, its y chain stays apart; the free body f is an island.
+  for (bool reader_first : {true, false}) {
+    const std::string r = testing::Ball("r", "0 0 0"), sb = testing::Ball("s", "0 4 0");
+    const SceneRun one_way =
+        SimulateOk(std::string(testing::kBallShape) + (reader_first ? r + sb : sb + r) +
+                   testing::Ball("f", "0 8 0") +
+                   "force -body r -x {s.x - r.x} -y 0 -z 0\nsimulator -finish 1 -collisions 0\n");
+    const auto& s3 = *one_way.simulation;
+    auto size3 = [&](const char* body, BodySlot slot) {
+      return s3.component(s3.component_of(Var(one_way, body, slot))).variables().size();
+    };
+    EXPECT_EQ(size3("s", physics::kX), 4u) << reader_first;  // {x, dx} of r and s
+    EXPECT_EQ(size3("s", physics::kY), 2u) << reader_first;
+    EXPECT_EQ(size3("f", physics::kX), static_cast<size_t>(physics::kBodySlots)) << reader_first;
+    for (size_t c = 0; c < static_cast<size_t>(s3.component_count()); ++c)
+      for (int u : s3.partition().upstream[c]) EXPECT_LT(u, static_cast<int>(c)) << reader_first;
+  }
 }
 
 TEST(Partition, ComponentsAreFusedOnlyWhereOneComponentAloneReadsThem) {
