@@ -20,7 +20,7 @@ constexpr double kMarginRelative = 0.02;  // contact points kept up to this gap 
 constexpr int kSleepEvents = 12;          // resting events at rest in a row before sleep
 constexpr int kSweeps = 200;              // contact solver sweeps at most
 constexpr int kJamEvents = 50;            // impacts at one instant before they count as a jam
-constexpr double kHoldTurn = 4.0;         // hop heights a held pair's bodies may turn by
+constexpr double kHoldTurn = 8.0;         // hop heights a held pair's bodies may turn by
 // The landing gap: at least this fraction of the smallest body's radius
 // (double precision cannot place bodies closer meaningfully).
 constexpr double kMinSeparation = 1e-8;
@@ -880,7 +880,8 @@ double CollisionMonitor::HeldUntil(int a, int b, double from) const {
     const auto ia = std::find(list.begin(), list.end(), a) - list.begin();
     const auto ib = std::find(list.begin(), list.end(), b) - list.begin();
     const std::pair<int, int> key = std::minmax(static_cast<int>(ia), static_cast<int>(ib));
-    return std::binary_search(it->held.begin(), it->held.end(), key) ? it->hold : -kInf;
+    const auto at = std::lower_bound(it->held.begin(), it->held.end(), key);
+    return at != it->held.end() && *at == key ? it->held_until[at - it->held.begin()] : -kInf;
   }
   return -kInf;
 }
@@ -1566,13 +1567,14 @@ void CollisionMonitor::RespondResting(const Impact& impact) {
   // alone can bring its points together again.  A point leaving at its
   // target lands at the hop's end, one slower by δ lands δ·hop deeper: the
   // solve must have met every target to within the hop's height over the
-  // hop.  A translation cannot bring two convex bodies that separate at
-  // their contact points together, a turn can: a tumbling cube's next
-  // corner swings in.  Each body's turn over the hop must move its points
-  // by at most kHoldTurn hop heights.  Other pairs are searched as usual.
-  std::set<std::pair<int, int>> unheld;
+  // hop, or the pair is not held.  A translation cannot bring two convex
+  // bodies that separate at their contact points together, a turn can: a
+  // tumbling cube's next corner swings in.  A pair is held until its bodies'
+  // turns could have moved their points by kHoldTurn hop heights, if that
+  // comes before the hop lands.
+  std::map<std::pair<int, int>, double> hold_for;  // per pair; absent: not held
   auto turn = [&](int body, const collide::BodyState& st) {
-    return bodies_[body].radius * st.w.norm() * hop;
+    return bodies_[body].radius * st.w.norm();
   };
   for (size_t k = 0; k < contacts.size(); ++k) {
     const collide::SolverContact& c = contacts[k];
@@ -1582,9 +1584,12 @@ void CollisionMonitor::RespondResting(const Impact& impact) {
     const Eigen::Vector3d vb = sb.v + sb.w.cross(c.point - sb.com);
     const auto [a, b] = contact_pair[k];
     const double height = AbsorbGap(a, b);
-    if ((vb - va).dot(c.normal) < c.target - height / hop ||
-        turn(a, sa) + turn(b, sb) > kHoldTurn * height)
-      unheld.insert({a, b});
+    auto [it, fresh] = hold_for.try_emplace({a, b}, hop);
+    if (fresh) {
+      const double speed = turn(a, sa) + turn(b, sb);
+      if (speed * hop > kHoldTurn * height) it->second = kHoldTurn * height / speed;
+    }
+    if ((vb - va).dot(c.normal) < c.target - height / hop) it->second = -kInf;
   }
   Impact recorded = impact;
   recorded.resting = true;
@@ -1632,13 +1637,19 @@ void CollisionMonitor::RespondResting(const Impact& impact) {
         it = recorded.bodies.insert(it, body);
       return it == recorded.bodies.end() ? -1 : static_cast<int>(it - recorded.bodies.begin());
     };
+    std::vector<std::pair<std::pair<int, int>, double>> held;
     for (size_t k = 0; k < pairs.size(); ++k) {
-      if (skipped[k] || unheld.count({pairs[k].a, pairs[k].b})) continue;
+      const auto it = hold_for.find({pairs[k].a, pairs[k].b});
+      if (skipped[k] || it == hold_for.end() || !(it->second > 0)) continue;
       const int ia = position(pairs[k].a), ib = position(pairs[k].b);
-      if (ia >= 0 && ib >= 0) recorded.held.push_back(std::minmax(ia, ib));
+      if (ia >= 0 && ib >= 0) held.push_back({std::minmax(ia, ib), t + it->second});
     }
-    std::sort(recorded.held.begin(), recorded.held.end());
-    if (!recorded.held.empty()) recorded.hold = t + hop;
+    std::sort(held.begin(), held.end());
+    for (const auto& [key, until] : held) {
+      recorded.held.push_back(key);
+      recorded.held_until.push_back(until);
+      recorded.hold = std::max(recorded.hold, until);
+    }
   }
   ++counters_.impacts;
   ++counters_.resting_events;

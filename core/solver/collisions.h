@@ -92,6 +92,7 @@ struct Impact {
   // contact landing.
   double hold = 0.0;
   std::vector<std::pair<int, int>> held;
+  std::vector<double> held_until;  // per held pair: until when (at most `hold`)
   // Resting events: the hop they were solved for, and each solved contact's
   // impulses — the next resting event of the island starts from them
   // (SolveContacts' warm start).
