@@ -832,13 +832,9 @@ double CollisionMonitor::AccelBound(int body, double t0, double t1,
   double sum2 = 0;
   for (int axis = 0; axis < 3; ++axis) {
     double amax = 0;
-    // The cubic's p'' is linear on each segment (extremes at the ends); the
-    // bubble's second derivative varies by at most 2|e| over the segment.
     ForEachSegment(m.first_var + physics::kX + axis, t0, t1,
                    [&](const Cubic& p, double s0, double s1, double h) {
-                     for (double s : {s0, s1})
-                       amax = std::max(amax, std::abs(p.Second(s) / (h * h) - ref[axis]) +
-                                                 2 * std::abs(p.e) / (h * h));
+                     amax = std::max(amax, SecondBound(p, s0, s1, h, ref[axis]));
                    });
     sum2 += amax * amax;
   }

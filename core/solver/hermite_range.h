@@ -109,4 +109,15 @@ inline double RateMax(const Cubic& p, double s0, double s1, double h) {
   return (m + 0.2 * std::abs(p.e)) / h;
 }
 
+// A bound on |p''/h² − ref| over [s0, s1]: how far the piece's second
+// derivative (per unit time²) strays from ref there.  The cubic's part is
+// linear in s, so it lies between its values at the ends; the bubble's,
+// e (2 − 12 s + 12 s²), lies in [−e, 2e] (or [2e, −e]) on [0, 1], so it
+// differs from any convex combination of its end values by at most 3|e|.
+inline double SecondBound(const Cubic& p, double s0, double s1, double h, double ref) {
+  const double h2 = h * h;
+  return std::max(std::abs(p.Second(s0) / h2 - ref), std::abs(p.Second(s1) / h2 - ref)) +
+         3 * std::abs(p.e) / h2;
+}
+
 }  // namespace asgard::solver

@@ -115,5 +115,27 @@ TEST(HermiteRange, RateMaxBoundsTheSampledRate) {
   }
 }
 
+// The second derivative's bound holds the sampled values, and is reached on
+// the whole interval for a pure bubble (its 2e at the ends, −e between).
+TEST(HermiteRange, SecondBoundBoundsTheSampledSecondDerivative) {
+  std::mt19937_64 rng(14);
+  std::uniform_real_distribution<double> unit(0.0, 1.0), h(0.01, 3.0), ref(-5.0, 5.0);
+  for (int trial = 0; trial < 400; ++trial) {
+    const Cubic p = RandomCubic(rng, trial % 2 == 1);
+    double s0 = unit(rng), s1 = unit(rng);
+    if (s0 > s1) std::swap(s0, s1);
+    const double step = h(rng), r = ref(rng);
+    const double bound = SecondBound(p, s0, s1, step, r);
+    for (int k = 0; k <= 1000; ++k) {
+      const double s = s0 + (s1 - s0) * k / 1000;
+      ASSERT_LE(std::abs(p.Second(s) / (step * step) - r), bound * (1 + 1e-12)) << trial;
+    }
+  }
+  const Cubic bubble{0, 0, 0, 0, 1.0};  // e s²(1−s)², e = 1, on h = 1
+  EXPECT_DOUBLE_EQ(bubble.Second(0.5), -1.0);
+  EXPECT_LE(std::abs(bubble.Second(0.5) - 2.0), SecondBound(bubble, 0, 1, 1, 2.0));
+  EXPECT_DOUBLE_EQ(SecondBound(bubble, 0, 1, 1, 2.0), 3.0);
+}
+
 }  // namespace
 }  // namespace asgard::solver
