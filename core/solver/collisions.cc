@@ -1644,7 +1644,6 @@ void CollisionMonitor::RespondResting(const Impact& impact) {
     for (const auto& [key, until] : held) {
       recorded.held.push_back(key);
       recorded.held_until.push_back(until);
-      recorded.hold = std::max(recorded.hold, until);
     }
   }
   ++counters_.impacts;

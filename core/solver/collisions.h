@@ -84,15 +84,15 @@ struct Impact {
   // solve (a spin that grows from one event to the next is not at rest).
   std::vector<Eigen::Vector3d> spin;
   bool resting = false;  // a simultaneous solve of slow contacts, not an impact
-  // Resting events: the island's contacts are held until `hold`, the time
-  // its hop lands again; `held` are those pairs, as positions in `bodies`
-  // (which then also lists the static bodies the island touches).  A held
-  // pair is not searched before `hold` while no later event involves either
+  // Resting events: the island's held contact pairs, as positions in
+  // `bodies` (which then also lists the static bodies the island touches),
+  // sorted, each held until its `held_until`: the time the island's hop
+  // lands again, or sooner where its bodies turn (RespondResting).  A held
+  // pair is not searched before then while no later event involves either
   // of its moving bodies: one event per hop for the island, not one per
   // contact landing.
-  double hold = 0.0;
   std::vector<std::pair<int, int>> held;
-  std::vector<double> held_until;  // per held pair: until when (at most `hold`)
+  std::vector<double> held_until;
   // Resting events: the hop they were solved for, and each solved contact's
   // impulses — the next resting event of the island starts from them
   // (SolveContacts' warm start).
