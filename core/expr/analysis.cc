@@ -126,12 +126,14 @@ std::vector<int> Pool::Variables(std::span<const NodeId> roots) const {
   for (NodeId e : roots)
     if (e >= nodes_.size()) throw std::invalid_argument("expr::Pool::Variables: id out of range");
   std::vector<int> vars;
-  std::unordered_set<NodeId> seen;
+  struct SeenTag;
+  internal::NodeScratch<SeenTag, char, 0> seen(nodes_.size());
   std::vector<NodeId> stack(roots.begin(), roots.end());
   while (!stack.empty()) {
     const NodeId id = stack.back();
     stack.pop_back();
-    if ((impl_->flags[id] & kHasVar) == 0 || !seen.insert(id).second) continue;
+    if ((impl_->flags[id] & kHasVar) == 0 || seen.get(id)) continue;
+    seen.set(id, 1);
     const Node& n = nodes_[id];
     if (n.op == Op::kVar) vars.push_back(n.index);
     stack.insert(stack.end(), n.args.begin(), n.args.end());

@@ -8,6 +8,7 @@
 
 #include <cmath>
 #include <cstdint>
+#include <stdexcept>
 #include <unordered_map>
 #include <vector>
 
@@ -100,6 +101,44 @@ inline double BinaryValue(Op op, double a, double b) {
       return std::nan("");
   }
 }
+
+// A value per node id for the length of one walk over a pool (`kUnset`
+// for nodes the walk has not set): a scratch array over the ids, one per
+// thread and per Tag, kept between walks and cleared at the walk's end from
+// the list of the ids it set, so that a walk costs what it visits, not what
+// the pool holds (a hash map or set in its place was most of compiling a
+// rigid body's rates).  One walk per Tag and thread at a time.
+template <class Tag, class T, T kUnset>
+class NodeScratch {
+ public:
+  explicit NodeScratch(size_t pool_size) {
+    if (busy()) throw std::logic_error("expr::NodeScratch: nested walk");
+    busy() = true;
+    if (values().size() < pool_size) values().resize(pool_size, kUnset);
+  }
+  ~NodeScratch() {
+    for (NodeId id : set_) values()[id] = kUnset;
+    busy() = false;
+  }
+  NodeScratch(const NodeScratch&) = delete;
+  NodeScratch& operator=(const NodeScratch&) = delete;
+  T get(NodeId id) const { return values()[id]; }
+  void set(NodeId id, T v) {
+    if (values()[id] == kUnset) set_.push_back(id);
+    values()[id] = v;
+  }
+
+ private:
+  static std::vector<T>& values() {
+    thread_local std::vector<T> v;
+    return v;
+  }
+  static bool& busy() {
+    thread_local bool b = false;
+    return b;
+  }
+  std::vector<NodeId> set_;
+};
 
 // Calls done(id) to skip finished nodes and visit(id) after all operands of
 // id were visited.  visit must make done(id) true.  The pool may grow during
