@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "core/expr/expr.h"
+#include "core/expr/internal.h"
 #include "tests/expr/test_util.h"
 
 namespace asgard::expr {
@@ -124,6 +125,43 @@ TEST(Tape, LargeSumsAndProductsUseOperandLists) {
   const Interpreter ref(pool, 0, x);
   EXPECT_TRUE(SameDouble(out[0], ref.Eval(outs[0])));
   EXPECT_TRUE(SameDouble(out[1], ref.Eval(outs[1])));
+}
+
+// The per-node scratch of Compile and Variables: unset again after a walk
+// (a stale mark would make the next compilation reuse a register that
+// holds another node), a second walk of the same kind inside one refused,
+// and grown for a larger pool.
+TEST(NodeScratch, IsClearedAfterEachWalkAndRefusesToNest) {
+  struct TagA;
+  struct TagB;
+  {
+    internal::NodeScratch<TagA, int, -1> a(8);
+    a.set(3, 7);
+    a.set(3, 9);
+    a.set(5, 1);
+    EXPECT_EQ(a.get(3), 9);
+    EXPECT_EQ(a.get(4), -1);
+    EXPECT_THROW((internal::NodeScratch<TagA, int, -1>(8)), std::logic_error);
+    internal::NodeScratch<TagB, int, -1> b(8);  // another kind nests
+    EXPECT_EQ(b.get(3), -1);
+  }
+  internal::NodeScratch<TagA, int, -1> again(100);
+  for (NodeId id : {3u, 5u, 99u}) EXPECT_EQ(again.get(id), -1) << id;
+}
+
+// Tapes compiled one after another from one pool, sharing nodes, each equal
+// to a fresh compilation of its own outputs in a pool of its own.
+TEST(Tape, CompilationsInARowShareNothingButThePool) {
+  Pool pool;
+  const NodeId a = P(pool, "x*y + sin(x)"), b = P(pool, "x*y - 2"), c = P(pool, "sin(x) * (x*y)");
+  const std::vector<double> x = {0.3, -1.7};
+  std::vector<double> first(1), second(1), third(1);
+  Tape::Compile(pool, std::vector<NodeId>{a}).Evaluate(0.0, x.data(), first.data());
+  Tape::Compile(pool, std::vector<NodeId>{b}).Evaluate(0.0, x.data(), second.data());
+  Tape::Compile(pool, std::vector<NodeId>{c}).Evaluate(0.0, x.data(), third.data());
+  EXPECT_EQ(first[0], 0.3 * -1.7 + std::sin(0.3));
+  EXPECT_EQ(second[0], 0.3 * -1.7 - 2);
+  EXPECT_DOUBLE_EQ(third[0], std::sin(0.3) * (0.3 * -1.7));
 }
 
 }  // namespace
