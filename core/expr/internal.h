@@ -113,8 +113,8 @@ class NodeScratch {
  public:
   explicit NodeScratch(size_t pool_size) {
     if (busy()) throw std::logic_error("expr::NodeScratch: nested walk");
-    busy() = true;
     if (values().size() < pool_size) values().resize(pool_size, kUnset);
+    busy() = true;  // after the resize: a constructor that throws leaves it free
   }
   ~NodeScratch() {
     for (NodeId id : set_) values()[id] = kUnset;
