@@ -465,6 +465,9 @@ class Builder {
     // with other bodies' state) the seed's default.
     const double k = l.tightness > 0.0 ? l.tightness : kFallbackTightness;
     const double c = 2.0 * std::sqrt(k * m);
+    for (const int b : {b1, b2})
+      if (b >= 0 && !sys_.bodies[b].is_static)
+        sys_.bodies[b].spring_rate = std::max(sys_.bodies[b].spring_rate, std::sqrt(k / m));
     const V3 F = Sub(Scale(P.Const(-k), Sub(p1, p2)), Scale(P.Const(c), Sub(v1, v2)));
     ApplyForce(b1, F, Sub(p1, kin_[b1].p));
     if (b2 >= 0) ApplyForce(b2, Scale(P.Const(-1.0), F), Sub(p2, kin_[b2].p));

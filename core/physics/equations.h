@@ -98,6 +98,9 @@ struct BodyModel {
   std::vector<BodyPiece> pieces;
   std::string color;
   int first_var = -1;  // -1 for static bodies (no state)
+  // The largest rate √(k/m) of the springs (links with a tightness) that
+  // act on the body, 0 for none: the spectral radius they give its motion.
+  double spring_rate = 0.0;
   // Initial state (also the constant state of a static body).
   Eigen::Vector3d x0, v0, w0_body;
   Eigen::Quaterniond q0;

@@ -18,13 +18,35 @@ constexpr int kRunSteps = 64;
 // this many steps without being cut back (StepOnce).
 constexpr int kCalmSteps = 32;
 
-// The reference graph.  With `islands` (bodies fused: PartitionEquations'
-// body_of), a body whose equations read only its own variables and whose
-// variables no other equation reads is listed as an island and its arcs are
-// left out: it is one component whatever they are, and a scene of many
-// idle bodies costs one walk of each body's expressions, not one per
-// variable, a sort per row and a search of its cycles.
-ReadGraph ReadsOf(const physics::EquationSystem& sys, bool islands) {
+// A body held by a spring this fast is not fused (FusableBodies).  The
+// explicit pair is stable for h·ρ up to about 3.3, so such a spring bounds
+// its steps to 0.07 s or less, finer than smooth motion needs at moderate
+// tolerance: its component takes the implicit path wherever the spring's
+// rate, not accuracy, bounds the steps.
+constexpr double kStiffSpringRate = 50.0;
+
+// Per body: whether its components may be fused into one (PartitionEquations'
+// body_of).  A body on the implicit path because of some of its rows stays
+// apart, so that its other rows (a resting spin, an idle axis) do not ride
+// along in the Newton matrix: a body whose state a trajectory prescribes,
+// and one held by a stiff spring.
+std::vector<char> FusableBodies(const physics::EquationSystem& sys) {
+  std::vector<char> fusable(sys.bodies.size(), 1);
+  for (size_t b = 0; b < sys.bodies.size(); ++b)
+    fusable[b] = sys.bodies[b].spring_rate < kStiffSpringRate;
+  for (const auto& v : sys.variables)
+    if (v.body >= 0 && !v.overrides.empty()) fusable[v.body] = 0;
+  return fusable;
+}
+
+// The reference graph.  With `fusable` (per body, bodies fused:
+// PartitionEquations' body_of), a fusable body whose equations read only its
+// own variables and whose variables no other equation reads is listed as an
+// island and its arcs are left out: it is one component whatever they are,
+// and a scene of many idle bodies costs one walk of each body's
+// expressions, not one per variable, a sort per row and a search of its
+// cycles.
+ReadGraph ReadsOf(const physics::EquationSystem& sys, const std::vector<char>& fusable) {
   // An exact joint's force depends on the whole state of every body it
   // connects, directly or through other joints: a jointed group must be one
   // component.  Each body's acceleration rows read its own state and the
@@ -93,10 +115,10 @@ ReadGraph ReadsOf(const physics::EquationSystem& sys, bool islands) {
   // Islands: a body with state, no override, alone in its joint group (if
   // any), whose rows read only its own variables...
   std::vector<char> island(nb, 0);
-  if (islands)
+  if (!fusable.empty())
     for (int b = 0; b < nb; ++b) {
       const int v0 = sys.bodies[b].first_var;
-      if (v0 < 0 || (next[b] >= 0 && next[b] != b)) continue;
+      if (v0 < 0 || !fusable[b] || (next[b] >= 0 && next[b] != b)) continue;
       bool closed = static_cast<size_t>(v0 + physics::kBodySlots) <= nv;
       for (int k = 0; closed && k < physics::kBodySlots; ++k) {
         const auto& v = sys.variables[v0 + k];
@@ -163,17 +185,14 @@ ReadGraph ReadsOf(const physics::EquationSystem& sys, bool islands) {
 
 Simulation::Simulation(const physics::EquationSystem& system, SolverOptions options)
     : sys_(system), options_(options) {
-  reads_ = ReadsOf(sys_, options_.partition && options_.fuse_chains && options_.fuse_bodies);
-  // Per-body fusion: a body whose variables a trajectory prescribes stays
-  // apart (a prescribed row puts its whole component on the implicit path).
+  const bool fuse = options_.partition && options_.fuse_chains && options_.fuse_bodies;
+  const std::vector<char> fusable = fuse ? FusableBodies(sys_) : std::vector<char>();
+  reads_ = ReadsOf(sys_, fusable);
   std::vector<int> body_of;
-  if (options_.fuse_chains && options_.fuse_bodies) {
+  if (fuse) {
     body_of.assign(sys_.variables.size(), -1);
-    std::vector<char> prescribed(sys_.bodies.size(), 0);
-    for (const auto& v : sys_.variables)
-      if (v.body >= 0 && !v.overrides.empty()) prescribed[v.body] = 1;
     for (size_t i = 0; i < sys_.variables.size(); ++i)
-      if (const int b = sys_.variables[i].body; b >= 0 && !prescribed[b]) body_of[i] = b;
+      if (const int b = sys_.variables[i].body; b >= 0 && fusable[b]) body_of[i] = b;
   }
   partition_ = PartitionEquations(reads_, !options_.partition, options_.fuse_chains, body_of);
   values_.assign(sys_.variables.size(), 0.0);

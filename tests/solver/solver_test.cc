@@ -310,6 +310,36 @@ TEST(Partition, AFreeBodyIsOneComponentAndABodyCoupledToAnotherIsNot) {
   }
 }
 
+TEST(Partition, ABodyOnAStiffSpringIsNotFusedSoItsIdleRowsStayOffTheImplicitPath) {
+  // A ball held at its centre by a critically damped link to a fixed point,
+  // x0 = 1: only its x axis moves.  A soft link (rate 1/s) leaves the body
+  // one component; a stiff one (rate 1000/s, above the 50/s of
+  // simulation.cc) keeps it apart, so that the x axis alone takes steps
+  // (on the implicit path once the link's rate bounds them) and the idle
+  // axes and the spin take one rest step each.
+  const SceneRun soft = SimulateOk(testing::DampedLink(1.0, 1.0, 1.0, 1.0));
+  EXPECT_EQ(soft.simulation->component_count(), 1);
+  const SceneRun stiff = SimulateOk(testing::DampedLink(1e6, 1.0, 1.0, 0.05));
+  const auto& sim = *stiff.simulation;
+  EXPECT_EQ(sim.component_count(), 4);  // 3 axes, the rotation
+  const int cx = sim.component_of(Var(stiff, "d", physics::kX));
+  EXPECT_EQ(sim.component(cx).variables().size(), 2u);
+  const solver::Counters c = sim.totals();
+  EXPECT_EQ(c.rest_steps, 3);
+  EXPECT_EQ(sim.component(cx).counters().steps, c.steps - c.rest_steps);
+  // Apart and as one component, the closed form within 10 × rtol (1e-6).
+  solver::SolverOptions single;
+  single.partition = false;
+  const SceneRun one = SimulateOk(testing::DampedLink(1e6, 1.0, 1.0, 0.05), single);
+  EXPECT_EQ(one.simulation->component_count(), 1);
+  const int v = Var(stiff, "d", physics::kX);
+  for (double t : {0.001, 0.005, 0.02, 0.05}) {
+    const double exact = testing::DampedLinkExact(1e6, 1.0, 1.0, t);
+    EXPECT_NEAR(stiff.simulation->Value(v, t), exact, 1e-5) << t;
+    EXPECT_NEAR(one.simulation->Value(v, t), exact, 1e-5) << t;
+  }
+}
+
 TEST(Partition, ComponentsAreFusedOnlyWhereOneComponentAloneReadsThem) {
   // b1.x reads b1.dx; b2.x reads b2.dx and b1.x; 4 reads b2.x; 5 reads b1.x.
   // b1's dx is read by b1's x alone: they fuse.  b1's x is read by two, so
