@@ -1,7 +1,8 @@
 // Linear solves for Newton's method: M Δ = r with M = I − a J.
 //
 //   n == 1        a division
-//   n ≤ dense     Eigen partial-pivot LU (small components: most of them)
+//   n ≤ dense     partial-pivot LU in plain loops (small components: most
+//                 of them)
 //   n > dense     SuiteSparse KLU; the sparsity pattern is fixed per
 //                 equation mode, so the symbolic analysis (AMD ordering,
 //                 block triangular form) is done once and only the numeric
@@ -11,7 +12,6 @@
 // that includes every diagonal entry.
 #pragma once
 
-#include <Eigen/Dense>
 #include <memory>
 #include <vector>
 
