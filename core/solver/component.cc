@@ -27,6 +27,14 @@ const double kErrC = (-3 * kGamma * kGamma + 4 * kGamma - 2) / (12 * (2 - kGamma
 // observed contraction rate, is below this fraction of the tolerance.
 constexpr double kNewtonTol = 0.02;
 constexpr int kNewtonMaxIter = 10;
+// Before a second iterate gives a rate, the first update is weighed with
+// the factor η = ρ/(1−ρ) of the last solve that measured one, raised to
+// kEtaDrift at each solve that does not (so that a stale η grows back
+// towards 1 and a second iterate is taken again within a few solves); an
+// unknown η is kEtaUnknown, which asks the first update to be below
+// kNewtonTol/kEtaUnknown^kEtaDrift (0.003) of the tolerance.
+constexpr double kEtaDrift = 0.8;
+constexpr double kEtaUnknown = SampleInfo().newton_eta;
 // TR-BDF2 instead of TR when h·ρ(J) exceeds this: TR's amplification tends to
 // −1 for stiff modes, so a mode with hλ beyond ~3 rings instead of decaying.
 constexpr double kTrStiffness = 3.0;
@@ -615,6 +623,10 @@ bool Component::Newton(Mode& m, double t_new, double a, const double* c, double*
   const size_t n = vars_.size();
   const double* x = wave_.x(wave_.size() - 1);
   double prev = std::numeric_limits<double>::infinity();
+  // A linear equation with a current Jacobian converges in one update; the
+  // rates seen by earlier solves say when that is so (kEtaDrift).
+  const double eta0 = std::pow(std::max(newton_eta_, 1e-16), kEtaDrift);
+  newton_eta_ = eta0;
   for (int it = 0; it < kNewtonMaxIter; ++it) {
     EvalF(m, t_new, y, fy, Side::kLeft, landing);
     ++counters_.newton_iterations;
@@ -623,18 +635,18 @@ bool Component::Newton(Mode& m, double t_new, double a, const double* c, double*
     for (size_t j = 0; j < n; ++j) y[j] += r_[j];
     const double norm = WeightedNorm(r_.data(), x, y);
     if (!std::isfinite(norm)) break;
-    // The first update has no rate yet: ask more of it.
     const double rate = it == 0 ? 0.0 : norm / prev;
     if (it >= 1 && rate > 0.9) break;
+    if (it >= 1) newton_eta_ = rate / (1.0 - rate);
     prev = norm;
-    const bool converged =
-        it == 0 ? norm <= 0.1 * kNewtonTol : norm * rate / (1.0 - rate) <= kNewtonTol;
+    const bool converged = norm * newton_eta_ <= kNewtonTol;
     if (converged || norm == 0.0) {
       for (size_t j = 0; j < n; ++j) fy[j] = m.prescribed[j] ? y[j] : (y[j] - c[j]) / a;
       return std::all_of(fy, fy + n, [](double v) { return std::isfinite(v); });
     }
   }
   ++counters_.newton_failures;
+  newton_eta_ = kEtaUnknown;
   return false;
 }
 
@@ -1050,6 +1062,7 @@ bool Component::Step() {
   const double h_min =
       std::max(1e-13 * span, 8 * std::numeric_limits<double>::epsilon() * std::abs(t));
   const SampleInfo info = wave_.info(k);
+  newton_eta_ = info.newton_eta;  // kept with the sample: a resumed run sees the same
   Mode& mode = ModeAt(t);
   const bool implicit = UseImplicit(mode, info);
   const bool auto_method = o.method == SolverOptions::Method::kAuto && !mode.any_prescribed;
@@ -1089,6 +1102,7 @@ bool Component::Step() {
       SampleInfo next;
       next.implicit = implicit;
       next.err_prev = std::max(att.err, 1e-4);
+      if (implicit) next.newton_eta = newton_eta_;
       double factor;
       if (implicit) {
         const double grow = rejected ? 1.0 : kImplicitMaxFactor;

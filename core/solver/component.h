@@ -336,6 +336,9 @@ class Component {
   Mode* jac_mode_ = nullptr;
   double factored_a_ = -1;
   double rho_ = 0.0;  // spectral radius estimate at the Jacobian's sample
+  // Newton's ρ/(1−ρ) from the last solve that measured a contraction rate ρ
+  // (component.cc: kEtaDrift), from the sample a step starts at.
+  double newton_eta_ = SampleInfo().newton_eta;
   Counters counters_;
   std::string error_;
   int failed_variable_ = -1;

@@ -58,6 +58,9 @@ struct SampleInfo {
   // Implicit: the sample whose Jacobian the step from here reuses (−1: take
   // it here).  Kept with the sample so a resumed run reuses the same one.
   int jac_from = -1;
+  // Implicit: Newton's factor ρ/(1−ρ) as the step into this sample left it,
+  // the next step's start (component.cc, kEtaDrift; 10: not known).
+  double newton_eta = 10.0;
 };
 
 class Waveform {
