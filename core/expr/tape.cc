@@ -52,28 +52,25 @@ Tape Tape::Compile(const Pool& pool, std::span<const NodeId> outputs) {
   // Each compiled node's register (-1: not compiled yet).
   struct RegisterTag;
   internal::NodeScratch<RegisterTag, int32_t, -1> regs(pool.size());
-  auto set = [&](NodeId id, int32_t r) { regs.set(id, r); };
-  auto reg = [&](NodeId id) { return regs.get(id); };
   auto fresh = [&tape](double init) {
     tape.regs_.push_back(init);
     return static_cast<int32_t>(tape.regs_.size() - 1);
   };
   auto visit = [&](NodeId id) {
-    const Node& n = pool.node(id);
-    if (reg(id) >= 0) return;
+    const Node& n = pool.node(id);  // PostOrder visits each node once
     if (n.op == Op::kConst) {
-      set(id, fresh(n.value));
+      regs.set(id, fresh(n.value));
       return;
     }
     if (n.op == Op::kTime) {
-      set(id, 0);
+      regs.set(id, 0);
       return;
     }
     Instr in;
     if (n.op == Op::kVar) {
       const int32_t dst = fresh(0.0);
       tape.loads_.push_back({dst, n.index});
-      set(id, dst);
+      regs.set(id, dst);
       return;
     }
     in.code = C(n.op);
@@ -87,42 +84,42 @@ Tape Tape::Compile(const Pool& pool, std::span<const NodeId> outputs) {
       case Op::kMul:
         if (n.args.size() == 2) {
           in.code = n.op == Op::kAdd ? kAdd2 : kMul2;
-          in.a = reg(n.args[0]);
-          in.b = reg(n.args[1]);
+          in.a = regs.get(n.args[0]);
+          in.b = regs.get(n.args[1]);
         } else if (n.args.size() == 3) {
           in.code = n.op == Op::kAdd ? kAdd3 : kMul3;
-          in.a = reg(n.args[0]);
-          in.b = reg(n.args[1]);
-          in.c = reg(n.args[2]);
+          in.a = regs.get(n.args[0]);
+          in.b = regs.get(n.args[1]);
+          in.c = regs.get(n.args[2]);
         } else {
           in.code = n.op == Op::kAdd ? kAddN : kMulN;
           in.a = static_cast<int32_t>(tape.operands_.size());
           in.b = static_cast<int32_t>(n.args.size());
-          for (NodeId arg : n.args) tape.operands_.push_back(reg(arg));
+          for (NodeId arg : n.args) tape.operands_.push_back(regs.get(arg));
         }
         break;
       case Op::kPow: {
-        in.a = reg(n.args[0]);
-        in.b = reg(n.args[1]);
+        in.a = regs.get(n.args[0]);
+        in.b = regs.get(n.args[1]);
         auto k = pool.ConstValue(n.args[1]);
         if (k && *k == 2.0) in.code = kSquare;
         if (k && *k == -1.0) in.code = kRecip;
         break;
       }
       default:
-        in.a = reg(n.args[0]);
-        if (n.args.size() > 1) in.b = reg(n.args[1]);
-        if (n.args.size() > 2) in.c = reg(n.args[2]);
+        in.a = regs.get(n.args[0]);
+        if (n.args.size() > 1) in.b = regs.get(n.args[1]);
+        if (n.args.size() > 2) in.c = regs.get(n.args[2]);
         break;
     }
     in.dst = fresh(0.0);
-    set(id, in.dst);
+    regs.set(id, in.dst);
     tape.code_.push_back(in);
   };
   for (NodeId out : outputs) {
     internal::PostOrder(
-        pool, out, [&](NodeId id) { return reg(id) >= 0; }, visit);
-    tape.outputs_.push_back(reg(out));
+        pool, out, [&](NodeId id) { return regs.get(id) >= 0; }, visit);
+    tape.outputs_.push_back(regs.get(out));
   }
   return tape;
 }

@@ -1482,8 +1482,8 @@ void CollisionMonitor::RespondResting(const Impact& impact) {
   }
   const double hop = HopPeriod(press, std::isfinite(radius) ? radius : 1.0);
   std::vector<collide::SolverContact> contacts;
-  std::vector<std::pair<int, int>> contact_pair;  // per contact: its bodies
-  std::map<int, const Impact*> previous;          // per body: PreviousResting
+  std::vector<size_t> contact_pair;       // per contact: its pair's index
+  std::map<int, const Impact*> previous;  // per body: PreviousResting
   auto previous_of = [&](int body) {
     auto [it, fresh] = previous.try_emplace(body, nullptr);
     if (fresh) it->second = PreviousResting(body, t);
@@ -1551,7 +1551,7 @@ void CollisionMonitor::RespondResting(const Impact& impact) {
       c.target = std::max(bounce, 0.5 * pressed * hop + (separation_ - gap) / hop);
       WarmStart(c, pc.a, pc.b, previous_of(Movable(pc.a, t) ? pc.a : pc.b), hop);
       contacts.push_back(c);
-      contact_pair.push_back({pc.a, pc.b});
+      contact_pair.push_back(k);
     }
   }
   for (int body : members)
@@ -1568,7 +1568,8 @@ void CollisionMonitor::RespondResting(const Impact& impact) {
   // tumbling cube's next corner swings in.  A pair is held until its bodies'
   // turns could have moved their points by kHoldTurn hop heights, if that
   // comes before the hop lands.
-  std::map<std::pair<int, int>, double> hold_for;  // per pair; absent: not held
+  // Per pair: how long it is held (NaN: no contact of it solved, not held).
+  std::vector<double> hold_for(pairs.size(), std::numeric_limits<double>::quiet_NaN());
   auto turn = [&](int body, const collide::BodyState& st) {
     return bodies_[body].radius * st.w.norm();
   };
@@ -1578,21 +1579,23 @@ void CollisionMonitor::RespondResting(const Impact& impact) {
     const collide::BodyState& sb = states[static_cast<size_t>(c.b)];
     const Eigen::Vector3d va = sa.v + sa.w.cross(c.point - sa.com);
     const Eigen::Vector3d vb = sb.v + sb.w.cross(c.point - sb.com);
-    const auto [a, b] = contact_pair[k];
+    const size_t pk = contact_pair[k];
+    const int a = pairs[pk].a, b = pairs[pk].b;
     const double height = AbsorbGap(a, b);
-    auto [it, fresh] = hold_for.try_emplace({a, b}, hop);
-    if (fresh) {
+    double& held_for = hold_for[pk];
+    if (std::isnan(held_for)) {
+      held_for = hop;
       const double speed = turn(a, sa) + turn(b, sb);
-      if (speed * hop > kHoldTurn * height) it->second = kHoldTurn * height / speed;
+      if (speed * hop > kHoldTurn * height) held_for = kHoldTurn * height / speed;
     }
-    if ((vb - va).dot(c.normal) < c.target - height / hop) it->second = -kInf;
+    if ((vb - va).dot(c.normal) < c.target - height / hop) held_for = -kInf;
   }
   Impact recorded = impact;
   recorded.resting = true;
   recorded.hop = hop;
   for (size_t k = 0; k < contacts.size(); ++k)
-    recorded.contacts.push_back({contact_pair[k].first, contact_pair[k].second, contacts[k].point,
-                                 contacts[k].normal, contacts[k].normal_impulse,
+    recorded.contacts.push_back({pairs[contact_pair[k]].a, pairs[contact_pair[k]].b,
+                                 contacts[k].point, contacts[k].normal, contacts[k].normal_impulse,
                                  contacts[k].tangent_impulse});
   recorded.bodies = {impact.a, impact.b};
   for (int body : members)
@@ -1635,10 +1638,9 @@ void CollisionMonitor::RespondResting(const Impact& impact) {
     };
     std::vector<std::pair<std::pair<int, int>, double>> held;
     for (size_t k = 0; k < pairs.size(); ++k) {
-      const auto it = hold_for.find({pairs[k].a, pairs[k].b});
-      if (skipped[k] || it == hold_for.end() || !(it->second > 0)) continue;
+      if (skipped[k] || !(hold_for[k] > 0)) continue;  // NaN: not held
       const int ia = position(pairs[k].a), ib = position(pairs[k].b);
-      if (ia >= 0 && ib >= 0) held.push_back({std::minmax(ia, ib), t + it->second});
+      if (ia >= 0 && ib >= 0) held.push_back({std::minmax(ia, ib), t + hold_for[k]});
     }
     std::sort(held.begin(), held.end());
     for (const auto& [key, until] : held) {
