@@ -303,6 +303,7 @@ class Component {
   std::vector<char> joint_rows_;                  // per local row: a joint force acts on it
   int index_;
   std::vector<int> vars_;
+  int first_var_ = -1;  // vars_[0] when vars_ is a run of consecutive variables
   std::vector<int> inputs_;
   std::vector<double> static_breakpoints_;
   std::vector<double> own_times_;  // own event times, sorted, with repeats
