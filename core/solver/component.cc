@@ -28,13 +28,18 @@ const double kErrC = (-3 * kGamma * kGamma + 4 * kGamma - 2) / (12 * (2 - kGamma
 constexpr double kNewtonTol = 0.02;
 constexpr int kNewtonMaxIter = 10;
 // Before a second iterate gives a rate, the first update is weighed with
-// the factor η = ρ/(1−ρ) of the last solve that measured one, raised to
-// kEtaDrift at each solve that does not (so that a stale η grows back
-// towards 1 and a second iterate is taken again within a few solves); an
+// the factor η = ρ/(1−ρ) of the last solve that measured one, raised to the
+// power 3/4 at each solve that does not (EtaDrift: a stale η grows back
+// towards 1, and a second iterate is taken again within a few solves); an
 // unknown η is kEtaUnknown, which asks the first update to be below
-// kNewtonTol/kEtaUnknown^kEtaDrift (0.003) of the tolerance.
-constexpr double kEtaDrift = 0.8;
+// kNewtonTol/kEtaUnknown^(3/4) (0.0036) of the tolerance.
 constexpr double kEtaUnknown = SampleInfo().newton_eta;
+// η^(3/4) by two square roots (a power per Newton solve was 6% of a stiff
+// link's run).
+double EtaDrift(double eta) {
+  const double e = std::max(eta, 1e-16);
+  return std::sqrt(e * std::sqrt(e));
+}
 // TR-BDF2 instead of TR when h·ρ(J) exceeds this: TR's amplification tends to
 // −1 for stiff modes, so a mode with hλ beyond ~3 rings instead of decaying.
 constexpr double kTrStiffness = 3.0;
@@ -630,9 +635,8 @@ bool Component::Newton(Mode& m, double t_new, double a, const double* c, double*
   const double* x = wave_.x(wave_.size() - 1);
   double prev = std::numeric_limits<double>::infinity();
   // A linear equation with a current Jacobian converges in one update; the
-  // rates seen by earlier solves say when that is so (kEtaDrift).
-  const double eta0 = std::pow(std::max(newton_eta_, 1e-16), kEtaDrift);
-  newton_eta_ = eta0;
+  // rates seen by earlier solves say when that is so (EtaDrift).
+  newton_eta_ = EtaDrift(newton_eta_);
   for (int it = 0; it < kNewtonMaxIter; ++it) {
     EvalF(m, t_new, y, fy, Side::kLeft, landing);
     ++counters_.newton_iterations;

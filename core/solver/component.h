@@ -338,7 +338,7 @@ class Component {
   double factored_a_ = -1;
   double rho_ = 0.0;  // spectral radius estimate at the Jacobian's sample
   // Newton's ρ/(1−ρ) from the last solve that measured a contraction rate ρ
-  // (component.cc: kEtaDrift), from the sample a step starts at.
+  // (component.cc: EtaDrift), from the sample a step starts at.
   double newton_eta_ = SampleInfo().newton_eta;
   Counters counters_;
   std::string error_;

@@ -59,7 +59,7 @@ struct SampleInfo {
   // it here).  Kept with the sample so a resumed run reuses the same one.
   int jac_from = -1;
   // Implicit: Newton's factor ρ/(1−ρ) as the step into this sample left it,
-  // the next step's start (component.cc, kEtaDrift; 10: not known).
+  // the next step's start (component.cc, EtaDrift; 10: not known).
   double newton_eta = 10.0;
 };
 
