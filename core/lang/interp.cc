@@ -548,6 +548,10 @@ int ListRepeat(ClientData, Tcl_Interp* interp, int objc, Tcl_Obj* const objv[]) 
     return TCL_ERROR;
   }
   size_t per = static_cast<size_t>(objc - 2);
+  if (per == 0) {  // nothing to repeat: no loop over the count (2e9 took a minute)
+    Tcl_ResetResult(interp);
+    return TCL_OK;
+  }
   size_t total = per * static_cast<size_t>(count);
   if (total > size_limits.list_elements) {
     SetError(interp, "lrepeat: result of " + std::to_string(total) +
