@@ -17,6 +17,7 @@ Waveform::Waveform(int n) : n_(n) {
 Waveform::Waveform(const Waveform& o) : Waveform(o.n_) {
   for (int k = 0; k < o.size(); ++k) Append(o.time(k), o.x(k), o.f(k), o.info(k), o.bubble(k));
   hint_ = o.hint_;
+  keep_hint_ = o.keep_hint_;
 }
 
 Waveform& Waveform::operator=(const Waveform& o) {
@@ -55,10 +56,19 @@ void Waveform::Resize(int k) {
 }
 
 int Waveform::KeepIndex(double t) const {
-  // First sample with time >= t.
-  const int k =
-      static_cast<int>(std::lower_bound(times_.begin(), times_.end(), t) - times_.begin());
-  if (k < size() && times_[k] == t) return k;
+  // First sample with time >= t: the last answer or the next one when it
+  // is still right (a window's bodies and variables ask for the same t in
+  // runs), else a binary search.
+  const int n = size();
+  auto first_at_or_after = [&](int k) {
+    return (k == 0 || times_[static_cast<size_t>(k) - 1] < t) &&
+           (k == n || times_[static_cast<size_t>(k)] >= t);
+  };
+  int k = std::min(keep_hint_, n);
+  if (!first_at_or_after(k) && !(k < n && first_at_or_after(++k)))
+    k = static_cast<int>(std::lower_bound(times_.begin(), times_.end(), t) - times_.begin());
+  keep_hint_ = k;
+  if (k < n && times_[static_cast<size_t>(k)] == t) return k;
   return std::max(0, k - 1);
 }
 

@@ -129,6 +129,7 @@ class Waveform {
   // The segment the last lookup found: lookups come in runs close in time
   // (collision queries, readers' steps), so most need no binary search.
   mutable int hint_ = 0;
+  mutable int keep_hint_ = 0;  // KeepIndex's last first-sample-at-or-after
 };
 
 }  // namespace asgard::solver

@@ -3,7 +3,10 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <random>
+#include <vector>
 
 namespace asgard::solver {
 namespace {
@@ -66,6 +69,57 @@ TEST(Waveform, ManyVariablesAtOnceReadAsOneAtATime) {
           EXPECT_EQ(out[j], rate ? w.Rate(idx[j], t, side) : w.Value(idx[j], t, side))
               << t << " " << j << (rate ? " rate" : " value");
       }
+}
+
+}  // namespace
+}  // namespace asgard::solver
+
+namespace asgard::solver {
+namespace {
+
+TEST(Waveform, KeepIndexFromItsHintAnswersAsTheSearchDoes) {
+  // Sample times with repeats (restarts, jumps), queries in runs, forward,
+  // backward and at random, and the waveform cut back and grown again in
+  // between: every answer is the definition's (the last sample before t, or
+  // the first at t; sample 0 before the start).
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<double> u(0.0, 1.0);
+  Waveform w(1);
+  std::vector<double> times;
+  const double x = 0.0;
+  auto grow = [&](int count) {
+    double t = times.empty() ? 0.0 : times.back();
+    for (int i = 0; i < count; ++i) {
+      if (u(rng) > 0.2) t += u(rng) < 0.5 ? 0.25 : 0.1 * u(rng);  // else a repeat
+      w.Append(t, &x, &x, SampleInfo{});
+      times.push_back(t);
+    }
+  };
+  auto expected = [&](double t) {
+    const int k = static_cast<int>(std::lower_bound(times.begin(), times.end(), t) - times.begin());
+    if (k < static_cast<int>(times.size()) && times[k] == t) return k;
+    return std::max(0, k - 1);
+  };
+  grow(400);
+  for (int round = 0; round < 200; ++round) {
+    const double span = times.back() + 0.5;
+    const double t0 = u(rng) * span - 0.25;
+    for (int q = 0; q < 20; ++q) {
+      // The same time again, a sample's own time, a nearby one, anywhere.
+      const int pick = static_cast<int>(u(rng) * 4);
+      double t = t0;
+      if (pick == 1) t = times[static_cast<size_t>(u(rng) * times.size())];
+      if (pick == 2) t = t0 + (u(rng) - 0.5) * 0.3;
+      if (pick == 3) t = u(rng) * span - 0.25;
+      ASSERT_EQ(w.KeepIndex(t), expected(t)) << "round " << round << " t " << t;
+    }
+    if (round % 10 == 9) {  // cut back and grow again: the hint may be past the end
+      const int keep = 1 + static_cast<int>(u(rng) * (times.size() - 1));
+      w.Resize(keep);
+      times.resize(static_cast<size_t>(keep));
+      grow(static_cast<int>(u(rng) * 100));
+    }
+  }
 }
 
 }  // namespace
