@@ -237,6 +237,12 @@ try {
       // A second rendition of the animation on the same clock.
       await page.click(`${fig(0)} >> .another`);
       check(await waitFor(async () => (await renderer(1)) === 'webgl', 'the second rendition'), 'Another view adds a second WebGL rendition');
+      const inView = await page.evaluate(() => {
+        const r = document.querySelectorAll('figure.rendition')[1].getBoundingClientRect();
+        return { top: r.top, bottom: r.bottom, height: innerHeight };
+      });
+      check(inView.top >= 0 && inView.bottom <= inView.height,
+        `the new rendition, below the pages, is scrolled into view (${JSON.stringify(inView)})`);
       const times = () => page.evaluate(() => [...document.querySelectorAll('figure.rendition')].map((f) => Number(f.dataset.t)));
       check((await times()).every((t) => t === 3), `it shows the first one's time (${await times()})`);
       await page.locator(`${fig(1)} >> .time`).fill('500');

@@ -244,16 +244,20 @@ class Animation {
 
   // Another rendition of this animation after `figure`, on the same clock.
   // On the host's pages a figure lies over its region, so the new one goes
-  // below the pages instead.
+  // below the pages instead, and is scrolled into view: the reader sees
+  // what the click made (the clock is shared, so its toolbar serves both).
   addRendition(figure) {
     const f = this.template.cloneNode(true);
     const more = document.getElementById('more-renditions');
-    if (f.classList.contains('placed') && more) {
+    const below = f.classList.contains('placed') && more;
+    if (below) {
       f.classList.remove('placed');
       f.removeAttribute('style');
       more.append(f);
     } else figure.after(f);
-    return this.add(f);
+    const r = this.add(f);
+    if (below) f.scrollIntoView({ block: 'nearest' });
+    return r;
   }
 
   setStatus(text) { for (const r of this.renditions) r.status.textContent = text; }
