@@ -121,7 +121,8 @@ ReadGraph ReadsOf(const physics::EquationSystem& sys, const std::vector<char>& f
       if (v0 < 0 || !fusable[b] || (next[b] >= 0 && next[b] != b)) continue;
       bool closed = static_cast<size_t>(v0 + physics::kBodySlots) <= nv;
       // (A body with an override is not fusable: FusableBodies.)
-      for (int k = 0; closed && k < physics::kBodySlots; ++k) closed = sys.variables[v0 + k].body == b;
+      for (int k = 0; closed && k < physics::kBodySlots; ++k)
+        closed = sys.variables[v0 + k].body == b;
       if (!closed) continue;
       walk(v0, v0 + physics::kBodySlots,
            [&](int r) { closed = closed && r >= v0 && r < v0 + physics::kBodySlots; });
