@@ -28,6 +28,7 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <limits>
 #include <memory>
 #include <vector>
 
@@ -61,6 +62,9 @@ struct SampleInfo {
   // Implicit: Newton's factor ρ/(1−ρ) as the step into this sample left it,
   // the next step's start (component.cc, EtaDrift; 10: not known).
   double newton_eta = 10.0;
+  // Implicit: the largest step Newton's failures allow from here
+  // (component.cc, kNewtonCap).
+  double h_newton = std::numeric_limits<double>::infinity();
 };
 
 class Waveform {
