@@ -1061,8 +1061,14 @@ double Component::RestSpan(const Mode& m, double h, const std::vector<int>* rows
     rest_rows_.assign(n, 0);
     for (int j : *rows) rest_rows_[j] = 1;
   } else {
+    // The row that ruled the last test out first: a moving body's spin
+    // rows come after its resting position rows, scanned at every step.
+    if (rest_veto_ < n && !scan(rest_veto_)) return 0.0;
     for (size_t j = 0; j < n; ++j)
-      if (!scan(j)) return 0.0;
+      if (!scan(j)) {
+        rest_veto_ = j;
+        return 0.0;
+      }
   }
   // A rate within rounding of the free rate that the joint forces balanced
   // (gravity against the joint holding a pendulum) counts as zero.

@@ -362,6 +362,7 @@ class Component {
   Scratch k_[7];  // the explicit pair's stages
   std::vector<double> gdot_;
   std::vector<char> rest_rows_;  // RestSpan's rows
+  size_t rest_veto_ = 0;         // RestSpan's last row ruling rest out (tested first)
   SampleInfo next_info_;         // method state to store with the sample a step appends
 };
 
