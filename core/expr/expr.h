@@ -211,14 +211,16 @@ using ExternFn = std::function<double(int fn, int order, double t)>;
 
 // A straight-line program evaluating several output expressions at once;
 // shared subexpressions are computed once.
-//   Evaluate(t, x, out, ext): x[i] is the value of Var(i) (the caller owns a
-//   value array covering every variable the outputs use); out receives one
-//   value per output in the order given to Compile.
+//   Evaluate(t, x, out, ext, x_offset): x[i − x_offset] is the value of
+//   Var(i) (the caller owns a value array covering every variable the
+//   outputs use); out receives one value per output in the order given to
+//   Compile.
 class Tape {
  public:
   static Tape Compile(const Pool& pool, std::span<const NodeId> outputs);
 
-  void Evaluate(double t, const double* x, double* out, const ExternFn* ext = nullptr) const;
+  void Evaluate(double t, const double* x, double* out, const ExternFn* ext = nullptr,
+                int32_t x_offset = 0) const;
 
   size_t instruction_count() const { return loads_.size() + code_.size(); }
   size_t output_count() const { return outputs_.size(); }

@@ -153,7 +153,8 @@ static_assert(C(Op::kExtern) == 3 && C(Op::kPow) == 6 && C(Op::kSign) == 22 &&
     goto* kDispatch[in->code];  \
   } while (false)
 
-void Tape::Evaluate(double t, const double* x, double* out, const ExternFn* ext) const {
+void Tape::Evaluate(double t, const double* x, double* out, const ExternFn* ext,
+                    int32_t x_offset) const {
   // clang-format off
   static void* const kDispatch[] = {
       // Const, Time, Var, Extern, Add, Mul
@@ -172,7 +173,7 @@ void Tape::Evaluate(double t, const double* x, double* out, const ExternFn* ext)
   double* r = regs_.data();
   const int32_t* ops = operands_.data();
   r[0] = t;
-  for (const Load& l : loads_) r[l.dst] = x[l.index];
+  for (const Load& l : loads_) r[l.dst] = x[l.index - x_offset];
   const Instr* in = code_.data();
   const Instr* const end = in + code_.size();
   if (in == end) goto done;

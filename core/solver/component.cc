@@ -464,14 +464,22 @@ void Component::Load(double t, const double* y, Side side) {
 
 void Component::EvalF(const Mode& m, double t, const double* y, double* out, Side side,
                       bool landing) {
-  Load(t, y, side);
   double te = t;
   if (landing) te = std::nextafter(t, -std::numeric_limits<double>::infinity());
   if (side == Side::kRight) te = std::nextafter(t, std::numeric_limits<double>::infinity());
   const expr::ExternFn& ext = sim_.externs();
+  ++counters_.rhs_evaluations;
+  // A component that reads only its own variables, numbered in a run, and
+  // nothing else from the simulation's values (joints, prescribed rates)
+  // has its tape read y itself: tape variable i is ours at i + shift −
+  // first_var_.  Else y goes to the values first, with the inputs.
+  if (first_var_ >= 0 && inputs_.empty() && !joints_ && m.gdot_rows.empty()) {
+    m.f_tape.tape->Evaluate(te, y, out, &ext, first_var_ - m.f_tape.shift);
+    return;
+  }
+  Load(t, y, side);
   m.f_tape.tape->Evaluate(te, sim_.values() + m.f_tape.shift, out, &ext);
   if (joints_) joints_->Apply(te, sim_.values(), out, m.prescribed.data(), &ext);
-  ++counters_.rhs_evaluations;
 }
 
 // The Jacobian's pattern, tape and linear solver, built when a mode first
