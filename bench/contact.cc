@@ -241,6 +241,12 @@ double FloorOrWallPenetration(const ContactScene& s, const ContactBody& shape,
   return deepest;
 }
 
+std::string ContactSceneText(const std::string& name) {
+  for (const ContactScene& s : ContactScenes())
+    if (name == s.name || name == s.name + "_" + Num(s.t1) + "s") return SceneText(s);
+  return "";
+}
+
 bool PrintContactScene(const std::string& name) {
   for (const ContactScene& s : ContactScenes()) {
     const std::string label = s.name + "_" + Num(s.t1) + "s";

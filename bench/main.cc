@@ -3,7 +3,7 @@
 //   asgard_bench [--quick] [--out DIR] [--repeats N] [--timeout S] [--pair dp5|tsit5] [SUITE...]
 //   asgard_bench --scene NAME   (a contact scene's script, for asgard simulate)
 //
-// Suites: workprec stiff fig57 fig511 skip stress contact articulated (default:
+// Suites: workprec stiff fig57 fig511 skip stress contact articulated threads (default:
 // all).  Each writes CSV files into DIR (default bench-out); bench/report.py
 // turns them into SVG plots and docs/benchmarks.md.
 #include <sys/stat.h>
@@ -55,7 +55,7 @@ int main(int argc, char** argv) {
           "                    [SUITE...]\n"
           "       asgard_bench --scene NAME   print a contact scene's script (pile30, "
           "balls100_60s, ...)\n"
-          "suites: workprec stiff fig57 fig511 skip stress contact articulated (default: "
+          "suites: workprec stiff fig57 fig511 skip stress contact articulated threads (default: "
           "all)\n");
       return 0;
     } else if (!a.empty() && a[0] == '-') {
@@ -87,5 +87,6 @@ int main(int argc, char** argv) {
   if (want("stress")) RunStress(cfg);
   if (want("contact")) RunContact(cfg);
   if (want("articulated")) RunArticulated(cfg);
+  if (want("threads")) RunThreads(cfg);
   return 0;
 }

@@ -533,6 +533,35 @@ def main():
                     md.append(f"- Variant 3 at N = {big}: {s3} (time limit), so the speed-up is > limit / {fmt(v4[big])} s.")
             md.append("")
 
+    # ---- threads ---------------------------------------------------------
+    th = read(os.path.join(out, "threads.csv"))
+    if th:
+        md += ["## Two threads", "",
+               "Independent components stepped on two threads at once (`SolverOptions::threads`, "
+               "simulation.h \"Threads\"), against one thread, in one child process, the rounds "
+               "interleaved. Timed by the wall clock of the solver phase (set-up and run), since "
+               "the calling thread's CPU time no longer covers the work; the CPU time of the whole "
+               "process is beside it. *Same* compares every waveform sample and impact of the two "
+               "runs bit for bit.", "",
+               "| scene | components | 1 thread: wall | 2 threads: wall | speed-up | CPU, 1 thread | "
+               "CPU, 2 threads | batches | same |", "|---|---|---|---|---|---|---|---|---|"]
+        scenes = []
+        for r in th:
+            if r["scene"] not in scenes:
+                scenes.append(r["scene"])
+        for sc in scenes:
+            g = {r["threads"]: r for r in th if r["scene"] == sc}
+            one, two = g.get("1"), g.get("2")
+            if not one or not two or one["status"] != "ok" or two["status"] != "ok":
+                st = (one or two or {}).get("status", "missing")
+                md.append(f"| {sc} | — | {st} | | | | | | |")
+                continue
+            w1, w2 = num(one["wall"]), num(two["wall"])
+            md.append(f"| {sc} | {one['components']} | {fmt(w1)} s | {fmt(w2)} s | {fmt(w1 / w2)}× | "
+                      f"{fmt(num(one['process_cpu']))} s | {fmt(num(two['process_cpu']))} s | "
+                      f"{two['batches']} | {'yes' if two['same'] == 'yes' else '**no**'} |")
+        md.append("")
+
     # ---- skip ------------------------------------------------------------
     sk = read(os.path.join(out, "skip.csv"))
     if sk:

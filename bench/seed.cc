@@ -5,12 +5,14 @@
 #include <sys/stat.h>
 
 #include <cmath>
+#include <ctime>
 #include <sstream>
 #include <string>
 #include <vector>
 
 #include "bench/model.h"
 #include "bench/suites.h"
+#include "core/lang/lang.h"
 #ifdef ASGARD_BENCH_SESSION
 #include "core/session/session.h"
 #endif
@@ -309,6 +311,140 @@ void RunFigure511(const Config& cfg) {
             t.status.c_str());
       }
     }
+}
+
+namespace {
+
+// Threads (SolverOptions::threads): each scene on one thread and on two,
+// interleaved round by round in one child process.  The calling thread's
+// CPU time no longer covers the work, so the solver phase is timed by the
+// wall clock, with the CPU time of the whole process beside it; the first
+// runs' waveforms and impacts are compared bit for bit.
+bool SameResults(const pipeline::Run& a, const pipeline::Run& b) {
+  if (!a.simulation || !b.simulation) return false;
+  const solver::Simulation& sa = *a.simulation;
+  const solver::Simulation& sb = *b.simulation;
+  if (sa.component_count() != sb.component_count()) return false;
+  for (int c = 0; c < sa.component_count(); ++c) {
+    const auto& wa = sa.component(c).waveform();
+    const auto& wb = sb.component(c).waveform();
+    if (wa.size() != wb.size()) return false;
+    const size_t bytes = static_cast<size_t>(wa.variable_count()) * sizeof(double);
+    for (int k = 0; k < wa.size(); ++k)
+      if (wa.time(k) != wb.time(k) || std::memcmp(wa.x(k), wb.x(k), bytes) != 0 ||
+          std::memcmp(wa.f(k), wb.f(k), bytes) != 0 ||
+          std::memcmp(wa.bubble(k), wb.bubble(k), bytes) != 0)
+        return false;
+  }
+  if (!a.collisions != !b.collisions) return false;
+  if (!a.collisions) return true;
+  const auto& ia = a.collisions->impacts();
+  const auto& ib = b.collisions->impacts();
+  if (ia.size() != ib.size()) return false;
+  for (size_t k = 0; k < ia.size(); ++k)
+    if (ia[k].t != ib[k].t || ia[k].a != ib[k].a || ia[k].b != ib[k].b ||
+        ia[k].impulse != ib[k].impulse)
+      return false;
+  return true;
+}
+
+double ProcessCpuSeconds() {
+  timespec ts{};
+  clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &ts);
+  return static_cast<double>(ts.tv_sec) + 1e-9 * static_cast<double>(ts.tv_nsec);
+}
+
+}  // namespace
+
+void RunThreads(const Config& cfg) {
+  Csv csv(cfg.out_dir + "/threads.csv", {"scene", "threads", "wall", "process_cpu", "runs", "steps",
+                                         "components", "batches", "same", "status", "error"});
+  struct Case {
+    std::string name;
+    std::string text;
+    bool collisions;
+  };
+  std::vector<Case> cases = {
+      {"fig511_1000_swinging_nocoll", Fig511Scene(1000), false},
+      {"fig511_1000_swinging", Fig511Scene(1000), true},
+      {"fig511_1000_rest", Fig511Scene(1000, true), true},
+      {"fig511_100_swinging", Fig511Scene(100), true},
+  };
+  {
+    const WpScene dp = DoublePendulumScene();
+    std::string text = dp.text.substr(0, dp.text.rfind("simulator"));
+    for (int i = 0; i < 99; ++i) {
+      const double pivot[3] = {3.0 * (i % 10), 20.0, -10.0 - 3.0 * (i / 10)};
+      text += PendulumText("idle" + std::to_string(i), pivot, 1.0, 0.0, 9.81, 0);
+    }
+    cases.push_back({"double_pendulum_plus_99_idle", text + "simulator -finish 10\n", false});
+  }
+  for (const char* name : {"balls100", "pile10"})
+    if (std::string text = ContactSceneText(name); !text.empty())
+      cases.push_back({name, text, true});
+  for (const Case& c : cases) {
+    constexpr size_t kFields =
+        6;  // per thread count: wall, process CPU, runs, steps, components, batches
+    auto iso = RunIsolated(
+        [&]() -> std::string {
+          std::vector<double> wall[2], cpu[2];
+          pipeline::Run first[2];
+          double spent = 0;
+          for (int i = 0; i < cfg.repeats && spent < (cfg.quick ? 5.0 : 20.0); ++i)
+            for (int k = 0; k < 2; ++k) {
+              pipeline::RunOptions o;
+              o.collisions = c.collisions;
+              o.solver.threads = k + 1;
+              pipeline::Run run = pipeline::Check(lang::Evaluate(c.text), o);
+              const double c0 = ProcessCpuSeconds();
+              pipeline::Solve(run, o);
+              const double c1 = ProcessCpuSeconds();
+              if (!run.ok) return "error " + run.solver_error;
+              wall[k].push_back(run.seconds);
+              cpu[k].push_back(c1 - c0);
+              spent += run.seconds;
+              if (i == 0) first[k] = std::move(run);
+            }
+          std::vector<double> packed;
+          for (int k = 0; k < 2; ++k)
+            packed.insert(packed.end(),
+                          {Median(wall[k]), Median(cpu[k]), static_cast<double>(wall[k].size()),
+                           static_cast<double>(first[k].simulation->totals().steps),
+                           static_cast<double>(first[k].simulation->component_count()),
+                           static_cast<double>(first[k].simulation->batches())});
+          packed.push_back(SameResults(first[0], first[1]) ? 1.0 : 0.0);
+          return Pack(packed);
+        },
+        cfg.timeout);
+    const bool failed = iso.status == "ok" && iso.output.rfind("error ", 0) == 0;
+    const std::vector<double> v =
+        iso.status == "ok" && !failed ? Unpack(iso.output) : std::vector<double>{};
+    for (int k = 0; k < 2; ++k) {
+      std::map<std::string, std::string> row = {{"scene", c.name}, {"threads", Int(k + 1)}};
+      row["status"] = failed ? "failed" : iso.status;
+      if (failed) row["error"] = iso.output.substr(6);
+      if (v.size() == 2 * kFields + 1) {
+        const double* f = v.data() + kFields * static_cast<size_t>(k);
+        row["wall"] = Num(f[0]);
+        row["process_cpu"] = Num(f[1]);
+        row["runs"] = Num(f[2]);
+        row["steps"] = Num(f[3]);
+        row["components"] = Num(f[4]);
+        row["batches"] = Num(f[5]);
+        row["same"] = v.back() == 1.0 ? "yes" : "no";
+      } else if (iso.status == "ok" && !failed) {
+        row["status"] = "crash";
+      }
+      csv.Row(row);
+    }
+    if (v.size() == 2 * kFields + 1)
+      Log("  threads %-30s wall %s s on one thread, %s s on two (%sx); CPU %s s, %s s; same: %s",
+          c.name.c_str(), Num(v[0]).c_str(), Num(v[kFields]).c_str(),
+          Num(v[0] / v[kFields]).c_str(), Num(v[1]).c_str(), Num(v[kFields + 1]).c_str(),
+          v.back() == 1.0 ? "yes" : "NO");
+    else
+      Log("  threads %-30s %s %s", c.name.c_str(), iso.status.c_str(), iso.output.c_str());
+  }
 }
 
 void RunSkip(const Config& cfg) {

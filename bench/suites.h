@@ -22,6 +22,11 @@ void RunContact(const Config& cfg);
 // Prints the contact suite's scene `name` (e.g. pile30, or balls100_60s)
 // as a scene script, for asgard's CLI; false, with the names, when unknown.
 bool PrintContactScene(const std::string& name);
+// Its text, or "" when unknown.
+std::string ContactSceneText(const std::string& name);
+// Threads: scenes on one thread and on two, wall clock and the CPU of all
+// threads, and whether the results agree bit for bit.  threads.csv
+void RunThreads(const Config& cfg);
 // Articulated bodies: a chain of 50 and a tree of 100 linked rods against
 // MuJoCo and Bullet, chains of 10 … 50 for the cost per step per body.
 //   articulated.csv, articulated_refs.csv

@@ -108,6 +108,14 @@ bool WriteAll(int fd, const void* buf, size_t n) {
                      [fd](const char* p, size_t k) { return ::write(fd, p, k); });
 }
 
+// A session's run options: every core of the machine steps components
+// (results do not depend on it; simulation.h, "Threads").
+pipeline::RunOptions SessionOptions() {
+  pipeline::RunOptions o;
+  o.solver.threads = solver::MachineThreads();
+  return o;
+}
+
 struct RpcError {
   int code;
   std::string message;
@@ -327,7 +335,7 @@ class Slave {
     for (auto& [k, r] : renditions_) r.renderer.reset();
     json changes = json::array();
     if (!session_) {
-      session_ = std::make_unique<session::Session>(text_);
+      session_ = std::make_unique<session::Session>(text_, SessionOptions());
     } else {
       for (const auto& c : session_->UpdateText(text_))
         if (c.change != session::Change::kUnchanged)
@@ -425,7 +433,7 @@ class Slave {
     }
     motion_.reset();
     sampler_.reset();
-    if (!session_) session_ = std::make_unique<session::Session>(text_);
+    if (!session_) session_ = std::make_unique<session::Session>(text_, SessionOptions());
     auto last = std::chrono::steady_clock::now() - std::chrono::seconds(1);
     // The interval for the progress fraction, from the session's scene.
     const scene::Simulator simulator = session_->scene().simulator.value_or(scene::Simulator{});

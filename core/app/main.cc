@@ -3,7 +3,7 @@
 //   asgard check FILE
 //   asgard simulate FILE [--until T] [--rtol R] [--atol A] [--out FILE.csv|FILE.json]
 //                        [--stats] [--method auto|dp5|esdirk3|tr|trbdf2] [--pair dp5|tsit5]
-//                        [--single] [--sequential] [--no-collisions] [--quiet]
+//                        [--single] [--sequential] [--no-collisions] [--threads N] [--quiet]
 //   asgard edit FILE --set ELEMENT.PARAM=VALUE ... [-o OUT] [--list]
 //   asgard render FILE ... -o OUT       (render_cmd.cc)
 //   asgard export FILE ... -o OUT       (render_cmd.cc)
@@ -102,6 +102,9 @@ Options:
   --sequential      run components to completion one after another
                     (no event-driven scheduling)
   --no-collisions   ignore collisions (default: the scene's simulator -collisions)
+  --threads N       step up to N independent components at once, 1 to 4
+                    (default: the machine's cores, at most 4); the results
+                    are the same, bit for bit, whatever N
   --quiet           no summary
   -h, --help        this help
 
@@ -242,6 +245,8 @@ void PrintStats(const asgard::pipeline::Run& run) {
   }
   std::cout << "totals:\n";
   PrintCounters(std::cout, sim.totals());
+  std::cout << "threads: " << sim.options().threads << " (batches of runs on several at once "
+            << sim.batches() << ")\n";
   if (run.collisions) {
     const auto& c = run.collisions->counters();
     std::cout << "collisions: windows " << c.windows << ", bodies boxed " << c.boxes
@@ -361,6 +366,7 @@ int Simulate(const std::vector<std::string>& args) {
   std::string file, out_path;
   bool stats = false, quiet = false;
   asgard::pipeline::RunOptions opts;
+  opts.solver.threads = asgard::solver::MachineThreads();
   std::optional<double> rtol, atol;
   for (size_t i = 0; i < args.size(); ++i) {
     const std::string& a = args[i];
@@ -412,6 +418,12 @@ int Simulate(const std::vector<std::string>& args) {
         opts.solver.pair = asgard::solver::SolverOptions::Pair::kTsitouras;
       else
         return Usage("--pair must be dp5 or tsit5", kSimulateHelp);
+    } else if (a == "--threads") {
+      auto v = value("--threads");
+      double d;
+      if (!v || !ParseNumber(*v, d) || d != std::floor(d) || d < 1 || d > 4)
+        return Usage("--threads needs a whole number from 1 to 4", kSimulateHelp);
+      opts.solver.threads = static_cast<int>(d);
     } else if (a == "--stats") {
       stats = true;
     } else if (a == "--quiet") {

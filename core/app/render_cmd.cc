@@ -294,6 +294,7 @@ int Load(const Common& c, const char* help, bool movie, Loaded& l) {
   if (!ReadFile(c.file, text)) return 1;
   pipeline::RunOptions opts;
   opts.until = c.until;
+  opts.solver.threads = solver::MachineThreads();
   l.run = pipeline::Simulate(text, opts);
   for (const auto& d : l.run.diagnostics) std::cerr << lang::FormatDiagnostic(c.file, d) << "\n";
   if (!l.run.solver_error.empty())

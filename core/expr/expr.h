@@ -211,16 +211,27 @@ using ExternFn = std::function<double(int fn, int order, double t)>;
 
 // A straight-line program evaluating several output expressions at once;
 // shared subexpressions are computed once.
-//   Evaluate(t, x, out, ext, x_offset): x[i − x_offset] is the value of
-//   Var(i) (the caller owns a value array covering every variable the
+//   Evaluate(t, x, out, ext, x_offset, lane): x[i − x_offset] is the value
+//   of Var(i) (the caller owns a value array covering every variable the
 //   outputs use); out receives one value per output in the order given to
-//   Compile.
+//   Compile.  Each lane has a register file of its own: one thread per lane
+//   may evaluate the same tape at once (the solver's threads share tapes
+//   among components with the same equations).  Lane 0's is made by
+//   Compile, another's by the first evaluation in it.
 class Tape {
  public:
+  static constexpr int kLanes = 4;
+
   static Tape Compile(const Pool& pool, std::span<const NodeId> outputs);
 
+  Tape() = default;
+  Tape(const Tape& o);
+  Tape& operator=(const Tape& o);
+  Tape(Tape&&) noexcept = default;
+  Tape& operator=(Tape&&) noexcept = default;
+
   void Evaluate(double t, const double* x, double* out, const ExternFn* ext = nullptr,
-                int32_t x_offset = 0) const;
+                int32_t x_offset = 0, int lane = 0) const;
 
   size_t instruction_count() const { return loads_.size() + code_.size(); }
   size_t output_count() const { return outputs_.size(); }
@@ -243,7 +254,11 @@ class Tape {
   std::vector<Instr> code_;
   std::vector<int32_t> operands_;  // operand registers of n-ary Add/Mul
   std::vector<int32_t> outputs_;   // register per output
+  // Lane 0's register file; its image as Compile left it (t, constants,
+  // zeros), from which other lanes' files are made; theirs.
   mutable std::vector<double> regs_;
+  std::vector<double> initial_;
+  mutable std::unique_ptr<double[]> lane_regs_[kLanes - 1];
   bool uses_extern_ = false;
 };
 

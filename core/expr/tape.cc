@@ -14,8 +14,9 @@
 // operand list, 550 now — callgrind over 10 000 calls of Evaluate alone;
 // bench/notes.md.)  Evaluate allocates nothing and uses the scalar functions of internal.h, so its
 // results are bit-identical to constant folding (sums and products accumulate left to right in the
-// canonical operand order).  The register file is mutable scratch: a Tape must
-// not be evaluated from two threads at once (copy it instead).
+// canonical operand order).  The register files are mutable scratch, one per
+// lane: two threads may evaluate one Tape at once only in different lanes.
+#include <algorithm>
 #include <iterator>
 #include <stdexcept>
 
@@ -123,7 +124,22 @@ Tape Tape::Compile(const Pool& pool, std::span<const NodeId> outputs) {
         pool, out, [&](NodeId id) { return regs.get(id) >= 0; }, visit);
     tape.outputs_.push_back(regs.get(out));
   }
+  tape.initial_ = tape.regs_;
   return tape;
+}
+
+Tape::Tape(const Tape& o)
+    : loads_(o.loads_),
+      code_(o.code_),
+      operands_(o.operands_),
+      outputs_(o.outputs_),
+      regs_(o.initial_),
+      initial_(o.initial_),
+      uses_extern_(o.uses_extern_) {}
+
+Tape& Tape::operator=(const Tape& o) {
+  if (this != &o) *this = Tape(o);
+  return *this;
 }
 
 // Evaluate dispatches by threaded code (GCC's and Clang's labels as values):
@@ -153,8 +169,8 @@ static_assert(C(Op::kExtern) == 3 && C(Op::kPow) == 6 && C(Op::kSign) == 22 &&
     goto* kDispatch[in->code];  \
   } while (false)
 
-void Tape::Evaluate(double t, const double* x, double* out, const ExternFn* ext,
-                    int32_t x_offset) const {
+void Tape::Evaluate(double t, const double* x, double* out, const ExternFn* ext, int32_t x_offset,
+                    int lane) const {
   // clang-format off
   static void* const kDispatch[] = {
       // Const, Time, Var, Extern, Add, Mul
@@ -171,6 +187,16 @@ void Tape::Evaluate(double t, const double* x, double* out, const ExternFn* ext,
   if (uses_extern_ && (ext == nullptr || !*ext))
     throw std::invalid_argument("expr::Tape::Evaluate: expression uses external functions");
   double* r = regs_.data();
+  if (lane != 0) {
+    if (lane < 0 || lane >= kLanes)
+      throw std::invalid_argument("expr::Tape::Evaluate: no such lane");
+    std::unique_ptr<double[]>& file = lane_regs_[lane - 1];
+    if (!file) {
+      file.reset(new double[initial_.size()]);
+      std::copy(initial_.begin(), initial_.end(), file.get());
+    }
+    r = file.get();
+  }
   const int32_t* ops = operands_.data();
   r[0] = t;
   for (const Load& l : loads_) r[l.dst] = x[l.index - x_offset];

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <mutex>
 #include <sstream>
 #include <type_traits>
 #include <utility>
@@ -319,6 +320,7 @@ Component::Mode& Component::ModeAt(double t) {
 }
 
 std::unique_ptr<Component::Mode> Component::BuildMode(const std::string& key, double t) {
+  const std::lock_guard<std::mutex> lock(sim_.build_mutex());  // the pool and the tape cache
   auto m = std::make_unique<Mode>();
   auto& pool = const_cast<expr::Pool&>(sys_.pool);  // derivatives extend the pool
   const int n = static_cast<int>(vars_.size());
@@ -454,7 +456,7 @@ void Component::BallisticStep(const Mode& m, double t, double h_max) {
 // ---- evaluation --------------------------------------------------------------
 
 void Component::Load(double t, const double* y, Side side) {
-  double* xg = sim_.values();
+  double* xg = sim_.values(lane_);
   if (first_var_ >= 0)
     std::copy(y, y + vars_.size(), xg + first_var_);
   else
@@ -474,12 +476,12 @@ void Component::EvalF(const Mode& m, double t, const double* y, double* out, Sid
   // has its tape read y itself: tape variable i is ours at i + shift −
   // first_var_.  Else y goes to the values first, with the inputs.
   if (first_var_ >= 0 && inputs_.empty() && !joints_ && m.gdot_rows.empty()) {
-    m.f_tape.tape->Evaluate(te, y, out, &ext, first_var_ - m.f_tape.shift);
+    m.f_tape.tape->Evaluate(te, y, out, &ext, first_var_ - m.f_tape.shift, lane_);
     return;
   }
   Load(t, y, side);
-  m.f_tape.tape->Evaluate(te, sim_.values() + m.f_tape.shift, out, &ext);
-  if (joints_) joints_->Apply(te, sim_.values(), out, m.prescribed.data(), &ext);
+  m.f_tape.tape->Evaluate(te, sim_.values(lane_) + m.f_tape.shift, out, &ext, 0, lane_);
+  if (joints_) joints_->Apply(te, sim_.values(lane_), out, m.prescribed.data(), &ext);
 }
 
 // The Jacobian's pattern, tape and linear solver, built when a mode first
@@ -491,6 +493,7 @@ void Component::EvalF(const Mode& m, double t, const double* y, double* out, Sid
 // Jacobian was 41% of a run at rtol 1e-2.
 void Component::PrepareJacobian(Mode& m) {
   if (m.solver) return;
+  const std::lock_guard<std::mutex> lock(sim_.build_mutex());  // the pool
   auto& pool = const_cast<expr::Pool&>(sys_.pool);  // derivatives extend the pool
   const int n = static_cast<int>(vars_.size());
   std::vector<expr::NodeId> all = m.outputs;
@@ -542,7 +545,7 @@ void Component::EvalJacobian(Mode& m, double t, const double* y) {
   if (m.numeric_jacobian) return EvalJacobianNumerically(m, t, y);
   Load(t, y, Side::kRight);
   const expr::ExternFn& ext = sim_.externs();
-  m.fj_tape.Evaluate(t, sim_.values(), m.out.data(), &ext);
+  m.fj_tape.Evaluate(t, sim_.values(lane_), m.out.data(), &ext);
   ++counters_.jacobian_evaluations;
   const size_t n = vars_.size();
   for (size_t k = 0; k < m.jrow.size(); ++k) m.jvals[k] = m.out[n + k];
@@ -703,7 +706,7 @@ void Component::Rates(const Mode& m, double t, const double* y, const double* fy
   double* g = gdot_.data();
   double te = side == Side::kRight ? std::nextafter(t, std::numeric_limits<double>::infinity()) : t;
   const expr::ExternFn& ext = sim_.externs();
-  m.gdot_tape.tape->Evaluate(te, sim_.values() + m.gdot_tape.shift, g, &ext);
+  m.gdot_tape.tape->Evaluate(te, sim_.values(lane_) + m.gdot_tape.shift, g, &ext, 0, lane_);
   for (size_t i = 0; i < m.gdot_rows.size(); ++i) rate[m.gdot_rows[i]] = g[i];
 }
 
@@ -1084,7 +1087,8 @@ double Component::RestSpan(const Mode& m, double h, const std::vector<int>* rows
   if (joints_) {
     Load(t, x, Side::kRight);
     const double te = std::nextafter(t, std::numeric_limits<double>::infinity());
-    m.f_tape.tape->Evaluate(te, sim_.values() + m.f_tape.shift, fg_.data(), &sim_.externs());
+    m.f_tape.tape->Evaluate(te, sim_.values(lane_) + m.f_tape.shift, fg_.data(), &sim_.externs(), 0,
+                            lane_);
     bool balanced = true;
     for (size_t j = 0; j < n && balanced; ++j)
       balanced =
@@ -1099,7 +1103,7 @@ double Component::RestSpan(const Mode& m, double h, const std::vector<int>* rows
       // are free here (step scratch).
       std::copy(fg_.data(), fg_.data() + n, r_.data());
       std::fill(est_.data(), est_.data() + n, 0.0);
-      joints_->Apply(te, sim_.values(), r_.data(), m.prescribed.data(), &sim_.externs(),
+      joints_->Apply(te, sim_.values(lane_), r_.data(), m.prescribed.data(), &sim_.externs(),
                      est_.data(), 2);
       for (size_t j = 0; j < n; ++j)
         if (tested(j) && joint_rows_[j] &&
@@ -1282,7 +1286,8 @@ SampleInfo Component::RestartSample(double t, const double* x, bool implicit) {
   if (jumped && joints_) {
     // An impulse on a jointed body moves its whole group (joint impulses).
     Load(t, y_.data(), Side::kRight);
-    joints_->ProjectVelocities(t, sim_.values(), y_.data(), m.prescribed.data(), &sim_.externs());
+    joints_->ProjectVelocities(t, sim_.values(lane_), y_.data(), m.prescribed.data(),
+                               &sim_.externs());
   }
   // Prescribed rows take their values from their equations (twice: a
   // prescribed value may read another).

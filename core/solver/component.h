@@ -135,6 +135,10 @@ struct SolverOptions {
   enum class Pair : uint8_t { kDormandPrince, kTsitouras };
   Pair pair = Pair::kTsitouras;
   int dense_limit = 40;  // larger components use KLU
+  // Threads that step components at once (1 to expr::Tape::kLanes; larger
+  // asks are capped).  Results are bit-identical whatever the number
+  // (simulation.h, "Threads").
+  int threads = 1;
 };
 
 struct Counters {
@@ -206,6 +210,9 @@ class Component {
   // Returns false on failure; error() says why.
   bool Step();
   const std::string& error() const { return error_; }
+  // The lane (Simulation::values, expr::Tape::Evaluate) of the thread that
+  // steps this component next; 0 outside a parallel run.
+  void set_lane(int lane) { lane_ = lane; }
   // After a failure caused by a value that is not finite: that variable
   // (global index), else -1.
   int failed_variable() const { return failed_variable_; }
@@ -302,6 +309,7 @@ class Component {
   bool points_autonomous_ = true;                 // no joint holds a body on a moving point
   std::vector<char> joint_rows_;                  // per local row: a joint force acts on it
   int index_;
+  int lane_ = 0;
   std::vector<int> vars_;
   int first_var_ = -1;  // vars_[0] when vars_ is a run of consecutive variables
   std::vector<int> inputs_;

@@ -2,8 +2,14 @@
 #include "core/solver/simulation.h"
 
 #include <algorithm>
+#include <atomic>
+#include <chrono>
+#include <exception>
 #include <limits>
 #include <sstream>
+#include <thread>
+
+#include "core/expr/expr.h"
 
 namespace asgard::solver {
 namespace {
@@ -180,7 +186,101 @@ ReadGraph ReadsOf(const physics::EquationSystem& sys, const std::vector<char>& f
   }
 }
 
+// How many queue entries a batch looks at for partners of the component
+// furthest behind (each costs a pop and, if refused, a push).
+constexpr int kPartnerLook = 8;
+// How long a thread spins for a change of its slot before it sleeps: longer
+// than the gap between batches of a busy run, short enough that an idle
+// worker (a run with no partners, a machine shared with other work) gives
+// its core up at once.
+constexpr auto kSpin = std::chrono::microseconds(50);
+
+void Pause() {
+#if defined(__x86_64__) || defined(__i386__)
+  __builtin_ia32_pause();
+#endif
+}
+
+// Waits until `ok(state)`, spinning for kSpin and then sleeping; returns the state.
+template <typename Ok>
+int Await(const std::atomic<int>& state, Ok ok) {
+  const auto until = std::chrono::steady_clock::now() + kSpin;
+  for (int spins = 0;; ++spins) {
+    const int v = state.load(std::memory_order_acquire);
+    if (ok(v)) return v;
+    if ((spins & 63) == 63 && std::chrono::steady_clock::now() > until) break;
+    Pause();
+  }
+  for (;;) {
+    const int v = state.load(std::memory_order_acquire);
+    if (ok(v)) return v;
+    state.wait(v, std::memory_order_acquire);
+  }
+}
+
 }  // namespace
+
+int MachineThreads() {
+  const unsigned cores = std::thread::hardware_concurrency();
+  return static_cast<int>(std::clamp(cores, 1u, static_cast<unsigned>(expr::Tape::kLanes)));
+}
+
+// The worker threads: lane k (1 ...) is thread k − 1, with a slot through
+// which the calling thread posts a run of one component and the worker
+// posts back its result.
+struct Simulation::Crew {
+  enum State : int { kIdle, kPosted, kDone, kQuit };
+  struct alignas(64) Slot {
+    std::atomic<int> state{kIdle};
+    int c = -1;
+    double ahead = 0.0, limit = 0.0;
+    RunResult result;
+    std::exception_ptr thrown;
+  };
+  std::vector<std::unique_ptr<Slot>> slots;
+  std::vector<std::thread> threads;
+
+  Crew(Simulation& sim, int lanes) {
+    for (int k = 1; k < lanes; ++k) slots.push_back(std::make_unique<Slot>());
+    for (int k = 1; k < lanes; ++k)
+      threads.emplace_back([&sim, &slot = *slots[static_cast<size_t>(k) - 1]] {
+        for (;;) {
+          const int v = Await(slot.state, [](int s) { return s == kPosted || s == kQuit; });
+          if (v == kQuit) return;
+          try {
+            slot.result = sim.RunSteps(slot.c, slot.ahead, slot.limit);
+          } catch (...) {
+            slot.result = {0, false};
+            slot.thrown = std::current_exception();
+          }
+          slot.state.store(kDone, std::memory_order_release);
+          slot.state.notify_one();
+        }
+      });
+  }
+  ~Crew() {
+    for (auto& slot : slots) {
+      slot->state.store(kQuit, std::memory_order_release);
+      slot->state.notify_one();
+    }
+    for (auto& t : threads) t.join();
+  }
+  void Post(int lane, int c, double ahead, double limit) {
+    Slot& slot = *slots[static_cast<size_t>(lane) - 1];
+    slot.c = c;
+    slot.ahead = ahead;
+    slot.limit = limit;
+    slot.thrown = nullptr;
+    slot.state.store(kPosted, std::memory_order_release);
+    slot.state.notify_one();
+  }
+  Slot& Wait(int lane) {
+    Slot& slot = *slots[static_cast<size_t>(lane) - 1];
+    Await(slot.state, [](int s) { return s == kDone; });
+    slot.state.store(kIdle, std::memory_order_relaxed);
+    return slot;
+  }
+};
 
 Simulation::Simulation(const physics::EquationSystem& system, SolverOptions options)
     : sys_(system), options_(options) {
@@ -218,7 +318,7 @@ Simulation::Simulation(const physics::EquationSystem& system, SolverOptions opti
   for (size_t c = 0; c < components_.size(); ++c) Push(static_cast<int>(c));
 }
 
-Simulation::~Simulation() = default;
+Simulation::~Simulation() { crew_.reset(); }
 
 double Simulation::InputValue(int var, double t, Side side) const {
   return components_[partition_.component_of[var]]->waveform().Value(local_index_[var], t, side);
@@ -281,6 +381,31 @@ bool Simulation::StepOnce() {
     if (e.stamp != stamp_[e.c]) continue;  // superseded by a truncation
     queued_[e.c] = 0;
     if (!Eligible(e.c)) continue;
+    if (options_.threads > 1 && MayRun(e.c)) {
+      // Partners for the lanes: eligible components that may take a run of
+      // steps, that neither read from the batch nor are read by it; the
+      // others go back to the queue.  (Under an observer a component in
+      // contact takes one step at a time: a batch of single steps costs
+      // more in hand-overs than it saves.)
+      const int lanes = std::min(options_.threads, expr::Tape::kLanes);
+      int batch[expr::Tape::kLanes] = {e.c};
+      int size = 1;
+      Entry refused[kPartnerLook];
+      int n_refused = 0;
+      for (int looked = 0; size < lanes && looked < kPartnerLook && !queue_.empty(); ++looked) {
+        const Entry p = queue_.top();
+        queue_.pop();
+        if (p.stamp != stamp_[p.c]) continue;
+        if (!MayRun(p.c) || Related(p.c, batch, size)) {
+          refused[n_refused++] = p;
+          continue;
+        }
+        queued_[p.c] = 0;
+        if (Eligible(p.c)) batch[size++] = p.c;
+      }
+      for (int k = 0; k < n_refused; ++k) queue_.push(refused[k]);
+      if (size > 1) return StepBatch(batch, size);
+    }
     Component& comp = *components_[e.c];
     // The component keeps stepping while it stays within a window ahead of
     // the one furthest behind (the queue's top): runs of steps of one
@@ -292,8 +417,7 @@ bool Simulation::StepOnce() {
     // past it).  Under an observer only a calm component runs ahead (no cut
     // in its last kCalmSteps steps): one in contact would be cut back at the
     // next impact and its run thrown away.
-    const bool may_run = !after_step || calm_steps_[e.c] >= kCalmSteps;
-    const double ahead = may_run ? kRunAhead * (sys_.t1 - sys_.t0) : 0.0;
+    const double ahead = MayRun(e.c) ? kRunAhead * (sys_.t1 - sys_.t0) : 0.0;
     const double limit = (queue_.empty() ? sys_.t1 : queue_.top().t) + ahead;
     int run = 0;
     do {
@@ -313,6 +437,85 @@ bool Simulation::StepOnce() {
     return true;
   }
   return false;
+}
+
+bool Simulation::MayRun(int c) const {
+  return !after_step || calm_steps_[static_cast<size_t>(c)] >= kCalmSteps;
+}
+
+bool Simulation::Related(int c, const int* batch, int size) const {
+  for (int k = 0; k < size; ++k) {
+    const auto& up = partition_.upstream[static_cast<size_t>(c)];
+    const auto& down = partition_.downstream[static_cast<size_t>(c)];
+    if (std::binary_search(up.begin(), up.end(), batch[k]) ||
+        std::binary_search(down.begin(), down.end(), batch[k]))
+      return true;
+  }
+  return false;
+}
+
+Simulation::RunResult Simulation::RunSteps(int c, double ahead, double limit) {
+  Component& comp = *components_[static_cast<size_t>(c)];
+  RunResult r;
+  do {
+    if (!comp.Step()) {
+      r.ok = false;
+      return r;
+    }
+    ++r.steps;
+  } while (ahead > 0.0 && r.steps < kRunSteps && comp.t_end() < limit && Eligible(c));
+  return r;
+}
+
+bool Simulation::StepBatch(const int* batch, int size) {
+  if (!crew_) {
+    const int lanes = std::min(options_.threads, expr::Tape::kLanes);
+    lane_values_.assign(static_cast<size_t>(lanes) - 1, std::vector<double>(values_.size(), 0.0));
+    crew_ = std::make_unique<Crew>(*this, lanes);
+  }
+  ++batches_;
+  // Each run's bound, as StepOnce gives it, from the component now furthest
+  // behind.
+  const double next = queue_.empty() ? sys_.t1 : queue_.top().t;
+  auto ahead = [&](int c) { return MayRun(c) ? kRunAhead * (sys_.t1 - sys_.t0) : 0.0; };
+  for (int k = 1; k < size; ++k) {
+    components_[static_cast<size_t>(batch[k])]->set_lane(k);
+    crew_->Post(k, batch[k], ahead(batch[k]), next + ahead(batch[k]));
+  }
+  RunResult results[expr::Tape::kLanes];
+  std::exception_ptr thrown;
+  try {
+    results[0] = RunSteps(batch[0], ahead(batch[0]), next + ahead(batch[0]));
+  } catch (...) {
+    thrown = std::current_exception();
+  }
+  for (int k = 1; k < size; ++k) {
+    Crew::Slot& slot = crew_->Wait(k);
+    results[k] = slot.result;
+    if (!thrown) thrown = slot.thrown;
+    components_[static_cast<size_t>(batch[k])]->set_lane(0);
+  }
+  if (thrown) std::rethrow_exception(thrown);
+  // The runs in batch order, as one thread would have taken them.
+  for (int k = 0; k < size; ++k) {
+    const int c = batch[k];
+    Component& comp = *components_[static_cast<size_t>(c)];
+    if (!results[k].ok) {
+      error_ = comp.error();
+      failed_variable_ = comp.failed_variable();
+      failed_ = true;
+      return false;
+    }
+    if (!Charge(c, results[k].steps)) return false;
+    calm_steps_[static_cast<size_t>(c)] += results[k].steps;
+    if (after_step) after_step(*this, c);
+    if (failed_) return false;
+  }
+  for (int k = 0; k < size; ++k) {
+    Push(batch[k]);
+    for (int d : partition_.downstream[static_cast<size_t>(batch[k])]) Push(d);
+  }
+  return true;
 }
 
 void Simulation::StartRun() {
@@ -354,10 +557,12 @@ std::string Simulation::BodiesOf(int c) const {
   return names;
 }
 
-bool Simulation::Charge(int c) {
-  ++run_steps_;
+bool Simulation::Charge(int c, long steps) {
+  run_steps_ += steps;
   const bool out_of_steps = budget_.steps > 0 && run_steps_ > budget_.steps;
-  const double bytes = budget_.memory_mb > 0 && (run_steps_ & 1023) == 0 ? WaveformBytes() : 0.0;
+  // Memory every 1024 steps: when this charge passed a multiple of 1024.
+  const bool check = budget_.memory_mb > 0 && (run_steps_ >> 10) != ((run_steps_ - steps) >> 10);
+  const double bytes = check ? WaveformBytes() : 0.0;
   const bool out_of_memory = bytes > budget_.memory_mb * 1048576.0;
   if (!out_of_steps && !out_of_memory) return true;
   // Name the component that spent most of it: steps this run, or samples held.

@@ -20,6 +20,25 @@
 // truncated component that resumes with unchanged inputs recomputes exactly
 // the samples it lost.
 //
+// Threads (SolverOptions::threads > 1): each time the component furthest
+// behind is taken from the queue, up to threads − 1 more eligible ones are
+// taken with it, none reading another of the batch, and all take their runs
+// of steps at once, one per thread ("lane").  A component's step reads its
+// own samples and its inputs' finished waveforms only, and its inputs are
+// not in the batch, so each run is the one a single thread would take.
+// Observers (after_step: collision checks, truncations) hear of each run
+// when the whole batch has ended, on the calling thread, before anything
+// else is scheduled; what a batch holds is decided there too, so a run is
+// the same sequence of batches whatever the threads' timing.  Each lane has
+// its own value array and register file per tape (shared tapes:
+// TapeCache); building a mode (the pool grows with derivatives, the tape
+// cache with tapes) takes build_mutex.  The workers start with the first
+// batch (a scene of one component never starts them), wait by spinning
+// briefly and then sleeping, and end with the Simulation.  Rejected: a task
+// per component on a pool with work stealing — the order of observer calls
+// and so a run's cost would depend on timing; results would not, but
+// reproducible costs keep the benchmarks and budgets honest.
+//
 // Rejected alternatives: (1) one global step for all components — the seed's
 // Figure 5.7 shows the cost grows with the product of size and stiffness;
 // (2) waveform relaxation — iterates whole waveforms to convergence, wasteful
@@ -30,6 +49,7 @@
 
 #include <functional>
 #include <memory>
+#include <mutex>
 #include <queue>
 #include <span>
 #include <string>
@@ -65,6 +85,10 @@ struct RunBudget {
   double memory_mb = 2048;
 };
 
+// The threads worth asking for on this machine: its cores, at most
+// expr::Tape::kLanes (SolverOptions::threads).
+int MachineThreads();
+
 class Simulation {
  public:
   Simulation(const physics::EquationSystem& system, SolverOptions options);
@@ -85,6 +109,8 @@ class Simulation {
   void set_budget(const RunBudget& budget) { budget_ = budget; }
   // Accepted steps since the current (or last) Run began.
   long steps_this_run() const { return run_steps_; }
+  // Batches of runs taken on several threads at once (Threads, above).
+  long batches() const { return batches_; }
   // Velocity jumps body b has taken since the current (or last) Run began.
   long impulses_this_run(int body) const;
   // Bytes the waveforms of all components hold.
@@ -180,8 +206,12 @@ class Simulation {
   std::function<void(Simulation&, int component, double t)> on_truncate;
   std::function<void(Simulation&)> after_truncate;
 
-  // Used by components.
-  double* values() { return values_.data(); }
+  // Used by components.  Each lane's (thread's) value array.
+  double* values(int lane = 0) {
+    return lane == 0 ? values_.data() : lane_values_[static_cast<size_t>(lane) - 1].data();
+  }
+  // Held while building a mode (Component::BuildMode, PrepareJacobian).
+  std::mutex& build_mutex() { return build_mutex_; }
   double InputValue(int var, double t, Side side) const;
   void Interpolate(const int* vars, int n, double t, Side side, bool rate, double* out) const;
   const expr::ExternFn& externs() const { return externs_; }
@@ -202,9 +232,30 @@ class Simulation {
   // Truncate for several components at once, each to t.
   void TruncateAll(const std::vector<int>& cs, double t, bool strict);
   bool Eligible(int c) const;
-  // Counts an accepted step of c against the budget; false (and the run
-  // failed) once it is exhausted.
-  bool Charge(int c);
+  // Counts `steps` accepted steps of c against the budget; false (and the
+  // run failed) once it is exhausted.
+  bool Charge(int c, long steps = 1);
+  // A run of steps of component c without observers (a lane's work): up to
+  // kRunSteps while it stays eligible and, with ahead > 0, before `limit`.
+  struct RunResult {
+    int steps = 0;
+    bool ok = true;
+  };
+  RunResult RunSteps(int c, double ahead, double limit);
+  // Takes the batch (its first the component furthest behind, already off
+  // the queue) to the lanes at once (Threads, above).
+  bool StepBatch(const int* batch, int size);
+  // Whether c may take a run of steps (StepOnce): no observer watches, or c
+  // has been calm for kCalmSteps.
+  bool MayRun(int c) const;
+  // Whether c reads from a member of batch[0..size) or one reads from c.
+  bool Related(int c, const int* batch, int size) const;
+  // Worker threads (simulation.cc), started with the first batch.
+  struct Crew;
+  std::unique_ptr<Crew> crew_;
+  std::vector<std::vector<double>> lane_values_;  // lanes 1 ...
+  std::mutex build_mutex_;
+  long batches_ = 0;
   // Counts a jump of var at t against its body's budget of impulses.
   void ChargeImpulse(int var, double t);
   void StartRun();

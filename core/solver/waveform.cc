@@ -64,10 +64,10 @@ int Waveform::KeepIndex(double t) const {
     return (k == 0 || times_[static_cast<size_t>(k) - 1] < t) &&
            (k == n || times_[static_cast<size_t>(k)] >= t);
   };
-  int k = std::min(keep_hint_, n);
+  int k = std::min(keep_hint_.get(), n);
   if (!first_at_or_after(k) && !(k < n && first_at_or_after(++k)))
     k = static_cast<int>(std::lower_bound(times_.begin(), times_.end(), t) - times_.begin());
-  keep_hint_ = k;
+  keep_hint_.set(k);
   if (k < n && times_[static_cast<size_t>(k)] == t) return k;
   return std::max(0, k - 1);
 }
@@ -76,10 +76,10 @@ int Waveform::Locate(double t, Side side) const {
   const int n = size();
   if (n == 1) return 0;
   // The hinted segment or the next: the same answers as the searches below.
-  for (int h = std::min(hint_, n - 2), tries = 0; tries < 2 && h + 1 < n; ++h, ++tries) {
+  for (int h = std::min(hint_.get(), n - 2), tries = 0; tries < 2 && h + 1 < n; ++h, ++tries) {
     const double a = times_[static_cast<size_t>(h)], b = times_[static_cast<size_t>(h) + 1];
     if (side == Side::kLeft ? (a < t && t <= b) : (a <= t && t < b)) {
-      hint_ = h;
+      hint_.set(h);
       return h;
     }
   }
@@ -92,7 +92,7 @@ int Waveform::Locate(double t, Side side) const {
     k = static_cast<int>(std::upper_bound(times_.begin(), times_.end(), t) - times_.begin()) - 1;
   }
   k = std::clamp(k, 0, n - 1);
-  hint_ = k;
+  hint_.set(k);
   return k;
 }
 

@@ -26,6 +26,7 @@
 // original computation bit for bit.
 #pragma once
 
+#include <atomic>
 #include <cstddef>
 #include <cstdint>
 #include <limits>
@@ -130,10 +131,27 @@ class Waveform {
   std::vector<std::unique_ptr<double[]>> segments_;
   int first_shift_ = 0;
   std::vector<SampleInfo> info_;
+  // A search's starting guess, read and written by readers on any thread
+  // (two components stepping at once may read one input): relaxed atomic,
+  // since any value gives the same answer.
+  class Hint {
+   public:
+    Hint() = default;
+    Hint(const Hint& o) : v_(o.get()) {}
+    Hint& operator=(const Hint& o) {
+      set(o.get());
+      return *this;
+    }
+    int get() const { return v_.load(std::memory_order_relaxed); }
+    void set(int v) const { v_.store(v, std::memory_order_relaxed); }
+
+   private:
+    mutable std::atomic<int> v_{0};
+  };
   // The segment the last lookup found: lookups come in runs close in time
   // (collision queries, readers' steps), so most need no binary search.
-  mutable int hint_ = 0;
-  mutable int keep_hint_ = 0;  // KeepIndex's last first-sample-at-or-after
+  Hint hint_;
+  Hint keep_hint_;  // KeepIndex's last first-sample-at-or-after
 };
 
 }  // namespace asgard::solver

@@ -68,6 +68,38 @@ TEST(Cli, BadUsageExitsWithTwoAndSaysWhy) {
   r = Asgard("simulate " + Sample("pendulum.al") + " --bogus");
   EXPECT_EQ(r.status, 2);
   EXPECT_NE(r.out.find("unknown option '--bogus'"), std::string::npos);
+  for (const char* threads : {"0", "5", "1.5", "two"}) {
+    r = Asgard("simulate " + Sample("pendulum.al") + " --threads " + threads);
+    EXPECT_EQ(r.status, 2) << threads;
+    EXPECT_NE(r.out.find("--threads needs a whole number from 1 to 4"), std::string::npos) << r.out;
+  }
+}
+
+TEST(Cli, AnyNumberOfThreadsWritesTheSameTrajectories) {
+  // Independent components on up to four threads: the same file, byte for
+  // byte (the solver's results are the same bit for bit).
+  const auto scene =
+      TempFile("pendulums.al",
+               "shape_set ball -desc {-sub {-pos {0 0 0} -sphere 0.5}}\n"
+               "for {set i 0} {$i < 8} {incr i} {\n"
+               "  set x [expr {3.0 * $i}]\n"
+               "  body p$i -shape ball -init_pos [list [expr {$x + 0.1 * $i}] -1 0]\n"
+               "  link -body1 p$i -offset1 [list [expr {-0.1 * $i}] 1 0] -x $x\n"
+               "  force -body p$i -y -9.81 -gravitational 1\n"
+               "}\n"
+               "simulator -finish 3\n");
+  std::string out[4];
+  for (int threads = 1; threads <= 4; ++threads) {
+    const auto csv = TempFile("threads" + std::to_string(threads) + ".csv");
+    const Result r = Asgard("simulate " + scene.string() + " --stats --threads " +
+                            std::to_string(threads) + " --out " + csv.string());
+    ASSERT_EQ(r.status, 0) << r.out;
+    EXPECT_NE(r.out.find("threads: " + std::to_string(threads)), std::string::npos) << r.out;
+    std::ifstream in(csv);
+    out[threads - 1].assign(std::istreambuf_iterator<char>(in), {});
+    ASSERT_GT(out[threads - 1].size(), 1000u);
+    EXPECT_EQ(out[threads - 1], out[0]) << threads;
+  }
 }
 
 TEST(Cli, CheckReportsErrorsAsFileLineColumn) {
