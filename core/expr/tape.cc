@@ -11,8 +11,9 @@
 // longer sums and products read an operand list.  (A torque-free top's
 // rates, 29 tape instructions: 920 machine instructions per evaluation
 // with every variable a dispatched load and every c·x·y a loop over an
-// operand list, 550 now — callgrind over 10 000 calls of Evaluate alone;
-// bench/notes.md.)  Evaluate allocates nothing and uses the scalar functions of internal.h, so its
+// operand list, 476 before lanes, which add a test and a branch — callgrind
+// over 10 000 calls of Evaluate alone; bench/notes.md.)  Evaluate allocates nothing (but a lane's
+// register file, at its first evaluation there) and uses the scalar functions of internal.h, so its
 // results are bit-identical to constant folding (sums and products accumulate left to right in the
 // canonical operand order).  The register files are mutable scratch, one per
 // lane: two threads may evaluate one Tape at once only in different lanes.

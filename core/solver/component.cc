@@ -988,6 +988,8 @@ bool Component::TryExplicitStepWith(const Mode& m, double t_end, bool landing, A
   return std::isfinite(out.err);
 }
 
+#undef ASGARD_INDEPENDENT_ITERATIONS
+
 bool Component::UseImplicit(const Mode& m, const SampleInfo& info) const {
   switch (sim_.options().method) {
     case SolverOptions::Method::kTrapezoidal:
