@@ -189,6 +189,17 @@ ReadGraph ReadsOf(const physics::EquationSystem& sys, const std::vector<char>& f
 // How many queue entries a batch looks at for partners of the component
 // furthest behind (each costs a pop and, if refused, a push).
 constexpr int kPartnerLook = 8;
+// Batches whose partners each took at most kThinRun steps save less than
+// their hand-overs cost (1000 pendulums at rest: one rest step each, 0.88×
+// the time of one thread): after kThinBatches of them in a row the calling
+// thread goes alone for kSoloTurns turns of the queue, twice as many after
+// each further such streak (at most kSoloTurnsMax), and tries again.  The
+// decision reads step counts only, so a run's batches still do not depend
+// on timing.
+constexpr int kThinRun = 2;
+constexpr int kThinBatches = 8;
+constexpr long kSoloTurns = 64;
+constexpr long kSoloTurnsMax = 1L << 16;
 // How long a thread spins for a change of its slot before it sleeps: longer
 // than the gap between batches of a busy run, short enough that an idle
 // worker (a run with no partners, a machine shared with other work) gives
@@ -229,7 +240,11 @@ int MachineThreads() {
 // which the calling thread posts a run of one component and the worker
 // posts back its result.
 struct Simulation::Crew {
-  enum State : int { kIdle, kPosted, kDone, kQuit };
+  // A posted run is claimed by its worker (kPosted → kRunning), or taken
+  // back by the calling thread when it is done with its own run first
+  // (kPosted → kIdle, TakeBack): a worker that has gone to sleep then
+  // costs no wake-up latency.
+  enum State : int { kIdle, kPosted, kRunning, kDone, kQuit };
   struct alignas(64) Slot {
     std::atomic<int> state{kIdle};
     int c = -1;
@@ -245,8 +260,10 @@ struct Simulation::Crew {
     for (int k = 1; k < lanes; ++k)
       threads.emplace_back([&sim, &slot = *slots[static_cast<size_t>(k) - 1]] {
         for (;;) {
-          const int v = Await(slot.state, [](int s) { return s == kPosted || s == kQuit; });
+          int v = Await(slot.state, [](int s) { return s == kPosted || s == kQuit; });
           if (v == kQuit) return;
+          if (!slot.state.compare_exchange_strong(v, kRunning, std::memory_order_acquire))
+            continue;  // taken back
           try {
             slot.result = sim.RunSteps(slot.c, slot.ahead, slot.limit);
           } catch (...) {
@@ -273,6 +290,13 @@ struct Simulation::Crew {
     slot.thrown = nullptr;
     slot.state.store(kPosted, std::memory_order_release);
     slot.state.notify_one();
+  }
+  // Whether the run posted to `lane` was taken back before its worker
+  // claimed it (the caller then takes it itself).
+  bool TakeBack(int lane) {
+    int posted = kPosted;
+    return slots[static_cast<size_t>(lane) - 1]->state.compare_exchange_strong(
+        posted, kIdle, std::memory_order_acquire);
   }
   Slot& Wait(int lane) {
     Slot& slot = *slots[static_cast<size_t>(lane) - 1];
@@ -381,7 +405,8 @@ bool Simulation::StepOnce() {
     if (e.stamp != stamp_[e.c]) continue;  // superseded by a truncation
     queued_[e.c] = 0;
     if (!Eligible(e.c)) continue;
-    if (options_.threads > 1 && MayRun(e.c)) {
+    ++turns_;
+    if (options_.threads > 1 && turns_ >= solo_until_ && MayRun(e.c)) {
       // Partners for the lanes: eligible components that may take a run of
       // steps, that neither read from the batch nor are read by it; the
       // others go back to the queue.  (Under an observer a component in
@@ -490,12 +515,33 @@ bool Simulation::StepBatch(const int* batch, int size) {
     thrown = std::current_exception();
   }
   for (int k = 1; k < size; ++k) {
+    Component& comp = *components_[static_cast<size_t>(batch[k])];
+    if (crew_->TakeBack(k)) {
+      comp.set_lane(0);
+      if (thrown) continue;
+      try {
+        results[k] = RunSteps(batch[k], ahead(batch[k]), next + ahead(batch[k]));
+      } catch (...) {
+        thrown = std::current_exception();
+      }
+      continue;
+    }
     Crew::Slot& slot = crew_->Wait(k);
     results[k] = slot.result;
     if (!thrown) thrown = slot.thrown;
-    components_[static_cast<size_t>(batch[k])]->set_lane(0);
+    comp.set_lane(0);
   }
   if (thrown) std::rethrow_exception(thrown);
+  bool thin = true;
+  for (int k = 1; k < size; ++k) thin = thin && results[k].steps <= kThinRun;
+  if (!thin) {
+    thin_batches_ = 0;
+    solo_turns_ = kSoloTurns;
+  } else if (++thin_batches_ >= kThinBatches) {
+    thin_batches_ = 0;
+    solo_until_ = turns_ + solo_turns_;
+    solo_turns_ = std::min(2 * solo_turns_, kSoloTurnsMax);
+  }
   // The runs in batch order, as one thread would have taken them.
   for (int k = 0; k < size; ++k) {
     const int c = batch[k];

@@ -34,7 +34,12 @@
 // TapeCache); building a mode (the pool grows with derivatives, the tape
 // cache with tapes) takes build_mutex.  The workers start with the first
 // batch (a scene of one component never starts them), wait by spinning
-// briefly and then sleeping, and end with the Simulation.  Rejected: a task
+// briefly and then sleeping, and end with the Simulation; a run its worker
+// has not claimed when the calling thread is done with its own is taken
+// back and run there (a sleeping worker costs no wake-up latency).  Batches
+// of runs of a step or two save less than their hand-overs cost, so a
+// streak of them makes the calling thread go alone for a while
+// (simulation.cc, kThinRun).  Rejected: a task
 // per component on a pool with work stealing — the order of observer calls
 // and so a run's cost would depend on timing; results would not, but
 // reproducible costs keep the benchmarks and budgets honest.
@@ -256,6 +261,13 @@ class Simulation {
   std::vector<std::vector<double>> lane_values_;  // lanes 1 ...
   std::mutex build_mutex_;
   long batches_ = 0;
+  // Turns of the queue (StepOnce's components taken), and the batches of
+  // short runs in a row: until turn solo_until_ no batches are formed
+  // (simulation.cc, kThinRun).
+  long turns_ = 0;
+  int thin_batches_ = 0;
+  long solo_until_ = 0;
+  long solo_turns_ = 64;
   // Counts a jump of var at t against its body's budget of impulses.
   void ChargeImpulse(int var, double t);
   void StartRun();
