@@ -41,6 +41,8 @@ JointSolver::JointSolver(const EquationSystem& sys, std::vector<int> joints,
     if (d.inv_inertia.isDiagonal(0.0) && d.inv_inertia(0, 0) == d.inv_inertia(1, 1) &&
         d.inv_inertia(1, 1) == d.inv_inertia(2, 2))
       d.isotropic = d.inv_inertia(0, 0);
+    else
+      any_anisotropic_ = true;
     d.R.setIdentity();
     d.inv_inertia_world = d.inv_inertia;
     d.w.setZero();
@@ -147,7 +149,6 @@ Eigen::Matrix3d JointSolver::Coupling(int i, int k) const {
       if (i == k && x != y) continue;
       const BodyData& b = bodies_[ei.body];
       if (b.kinematic) continue;
-      const double sign = (x == y) ? 1.0 : -1.0;
       // W(s, s') = I₃/m − [r]× I_W⁻¹ [r']× with world arms r = R s; with
       // I_W⁻¹ = c I₃ that is I₃/m + c ((r·r') I₃ − r' rᵀ).  The bracket is
       // formed first, as the product is: an arm along an axis gives exact
@@ -163,7 +164,10 @@ Eigen::Matrix3d JointSolver::Coupling(int i, int k) const {
         W.noalias() = -ei.arm_skew * b.inv_inertia_world * ek.arm_skew;
         W.diagonal().array() += b.inv_mass;
       }
-      K += sign * W;
+      if (x == y)  // σ_i σ_k = +1: a's side with a's, b's with b's
+        K += W;
+      else
+        K -= W;
     }
   return K;
 }
@@ -177,14 +181,14 @@ void JointSolver::Prepare(double t, const double* values, const char* prescribed
     if (b.isotropic == 0) b.inv_inertia_world.noalias() = b.R * b.inv_inertia * b.R.transpose();
     b.w = Eigen::Vector3d(values[v0 + kW1], values[v0 + kW2], values[v0 + kW3]);
     b.kinematic = false;
-    for (int slot = kX; slot <= kW3; ++slot)
+    for (int slot = kX; prescribed && slot <= kW3; ++slot)
       if (prescribed[b.local + slot]) b.kinematic = true;
   }
   for (JointData& d : joints_)
     for (End* e : {&d.a, &d.b})
       if (e->body >= 0) {
         e->arm = bodies_[e->body].R * e->s;
-        e->arm_skew = Skew(e->arm);
+        if (any_anisotropic_) e->arm_skew = Skew(e->arm);
       }
   if (!point_values_.empty() && !points_constant_)
     point_tape_.Evaluate(t, values, point_values_.data(), externs);
@@ -349,8 +353,8 @@ void JointSolver::Distribute(double* out, const char* prescribed, double* magnit
     const Eigen::Vector3d dv = b.inv_mass * force;
     const Eigen::Vector3d dw = b.inv_inertia * e.s.cross(b.R.transpose() * force);
     for (int a = 0; a < 3; ++a) {
-      if (!prescribed[b.local + kDx + a]) out[b.local + kDx + a] += dv[a];
-      if (!prescribed[b.local + kW1 + a]) out[b.local + kW1 + a] += dw[a];
+      if (!prescribed || !prescribed[b.local + kDx + a]) out[b.local + kDx + a] += dv[a];
+      if (!prescribed || !prescribed[b.local + kW1 + a]) out[b.local + kW1 + a] += dw[a];
     }
     if (magnitude)
       for (int a = 0; a < 3; ++a) {

@@ -60,8 +60,9 @@ class JointSolver {
   // Adds the joint forces' effect to `rates` (accelerations and angular
   // accelerations of the bodies involved).  `values` holds every state
   // variable (global indices) at time t; `rates` the free rates.  Rows set in
-  // `prescribed` (local) are values, not rates, and are left alone; a body
-  // whose velocity is prescribed moves as prescribed (infinite mass).
+  // `prescribed` (local; null: none) are values, not rates, and are left
+  // alone; a body whose velocity is prescribed moves as prescribed (infinite
+  // mass).
   // `magnitude` (optional, local rows like `rates`): each row gets the sum of
   // the magnitudes of the joint terms added to it — the size of the
   // cancellation's rounding where the joint forces balance others (a chain
@@ -140,6 +141,7 @@ class JointSolver {
   std::vector<JointData> joints_;
   expr::Tape point_tape_;         // unused when points_constant_
   bool points_constant_ = false;  // every joint point is a constant
+  bool any_anisotropic_ = false;  // some body's arms need their skew matrices (Coupling)
   std::vector<double> point_values_;
   // block structure
   std::vector<Pivot> pivots_;                   // in elimination order

@@ -169,6 +169,10 @@ struct Component::Mode {
   Ballistic ballistic;
 };
 
+const char* Component::Prescribed(const Mode& m) {
+  return m.any_prescribed ? m.prescribed.data() : nullptr;
+}
+
 struct Component::Attempt {
   bool trbdf2 = false;
   bool esdirk = false;
@@ -481,7 +485,7 @@ void Component::EvalF(const Mode& m, double t, const double* y, double* out, Sid
   }
   Load(t, y, side);
   m.f_tape.tape->Evaluate(te, sim_.values(lane_) + m.f_tape.shift, out, &ext, 0, lane_);
-  if (joints_) joints_->Apply(te, sim_.values(lane_), out, m.prescribed.data(), &ext);
+  if (joints_) joints_->Apply(te, sim_.values(lane_), out, Prescribed(m), &ext);
 }
 
 // The Jacobian's pattern, tape and linear solver, built when a mode first
@@ -1105,8 +1109,8 @@ double Component::RestSpan(const Mode& m, double h, const std::vector<int>* rows
       // are free here (step scratch).
       std::copy(fg_.data(), fg_.data() + n, r_.data());
       std::fill(est_.data(), est_.data() + n, 0.0);
-      joints_->Apply(te, sim_.values(lane_), r_.data(), m.prescribed.data(), &sim_.externs(),
-                     est_.data(), 2);
+      joints_->Apply(te, sim_.values(lane_), r_.data(), Prescribed(m), &sim_.externs(), est_.data(),
+                     2);
       for (size_t j = 0; j < n; ++j)
         if (tested(j) && joint_rows_[j] &&
             std::abs(r_[j]) > kRestRounding * (std::abs(fg_[j]) + est_[j]))
@@ -1288,8 +1292,7 @@ SampleInfo Component::RestartSample(double t, const double* x, bool implicit) {
   if (jumped && joints_) {
     // An impulse on a jointed body moves its whole group (joint impulses).
     Load(t, y_.data(), Side::kRight);
-    joints_->ProjectVelocities(t, sim_.values(lane_), y_.data(), m.prescribed.data(),
-                               &sim_.externs());
+    joints_->ProjectVelocities(t, sim_.values(lane_), y_.data(), Prescribed(m), &sim_.externs());
   }
   // Prescribed rows take their values from their equations (twice: a
   // prescribed value may read another).

@@ -247,6 +247,9 @@ class Component {
 
  private:
   struct Mode;
+  // The mode's prescribed rows for the joint solver, or null when it has
+  // none (it then skips every row test).
+  static const char* Prescribed(const Mode& m);
   struct Attempt;
 
   Mode& ModeAt(double t);
