@@ -307,7 +307,7 @@ struct Simulation::Crew {
 };
 
 Simulation::Simulation(const physics::EquationSystem& system, SolverOptions options)
-    : sys_(system), options_(options) {
+    : sys_(system), options_(options), lanes_(std::clamp(options.threads, 1, expr::Tape::kLanes)) {
   const bool fuse = options_.partition && options_.fuse_chains && options_.fuse_bodies;
   const std::vector<char> fusable = fuse ? FusableBodies(sys_) : std::vector<char>();
   reads_ = ReadsOf(sys_, fusable);
@@ -406,18 +406,17 @@ bool Simulation::StepOnce() {
     queued_[e.c] = 0;
     if (!Eligible(e.c)) continue;
     ++turns_;
-    if (options_.threads > 1 && turns_ >= solo_until_ && MayRun(e.c)) {
+    if (lanes_ > 1 && turns_ >= solo_until_ && MayRun(e.c)) {
       // Partners for the lanes: eligible components that may take a run of
       // steps, that neither read from the batch nor are read by it; the
       // others go back to the queue.  (Under an observer a component in
       // contact takes one step at a time: a batch of single steps costs
       // more in hand-overs than it saves.)
-      const int lanes = std::min(options_.threads, expr::Tape::kLanes);
       int batch[expr::Tape::kLanes] = {e.c};
       int size = 1;
       Entry refused[kPartnerLook];
       int n_refused = 0;
-      for (int looked = 0; size < lanes && looked < kPartnerLook && !queue_.empty(); ++looked) {
+      for (int looked = 0; size < lanes_ && looked < kPartnerLook && !queue_.empty(); ++looked) {
         const Entry p = queue_.top();
         queue_.pop();
         if (p.stamp != stamp_[p.c]) continue;
@@ -494,9 +493,8 @@ Simulation::RunResult Simulation::RunSteps(int c, double ahead, double limit) {
 
 bool Simulation::StepBatch(const int* batch, int size) {
   if (!crew_) {
-    const int lanes = std::min(options_.threads, expr::Tape::kLanes);
-    lane_values_.assign(static_cast<size_t>(lanes) - 1, std::vector<double>(values_.size(), 0.0));
-    crew_ = std::make_unique<Crew>(*this, lanes);
+    lane_values_.assign(static_cast<size_t>(lanes_) - 1, std::vector<double>(values_.size(), 0.0));
+    crew_ = std::make_unique<Crew>(*this, lanes_);
   }
   ++batches_;
   // Each run's bound, as StepOnce gives it, from the component now furthest

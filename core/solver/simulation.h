@@ -278,6 +278,7 @@ class Simulation {
 
   const physics::EquationSystem& sys_;
   SolverOptions options_;
+  int lanes_;  // threads stepping components: options_.threads, within 1 … expr::Tape::kLanes
   Partition partition_;
   std::vector<int> local_index_;             // variable → index within its component
   std::vector<std::vector<int>> joints_of_;  // per component
