@@ -11,6 +11,7 @@
 #include "core/pipeline/pipeline.h"
 #include "tests/common/samples.h"
 #include "tests/solver/reference_problems.h"
+#include "tests/solver/same_waveforms.h"
 
 namespace asgard {
 namespace {
@@ -439,20 +440,7 @@ TEST(StiffLink, TheLStableMethodTakesOverOnceTheTransientHasDecayed) {
   EXPECT_GE(comp.counters().esdirk_steps, late);
 }
 
-void ExpectSameWaveforms(const solver::Simulation& a, const solver::Simulation& b) {
-  ASSERT_EQ(a.component_count(), b.component_count());
-  for (int c = 0; c < a.component_count(); ++c) {
-    const auto& wa = a.component(c).waveform();
-    const auto& wb = b.component(c).waveform();
-    ASSERT_EQ(wa.size(), wb.size()) << "component " << c;
-    const int n = wa.variable_count();
-    for (int k = 0; k < wa.size(); ++k) {
-      ASSERT_EQ(wa.time(k), wb.time(k));
-      ASSERT_EQ(std::memcmp(wa.x(k), wb.x(k), n * sizeof(double)), 0) << "c " << c << " k " << k;
-      ASSERT_EQ(std::memcmp(wa.f(k), wb.f(k), n * sizeof(double)), 0);
-    }
-  }
-}
+using testing::ExpectSameWaveforms;
 
 TEST(Determinism, TwoRunsGiveBitIdenticalWaveforms) {
   const std::string text = ReadSample("pendulum.al");

@@ -4,12 +4,12 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
-#include <cstring>
 #include <sstream>
 #include <string>
 
 #include "core/pipeline/pipeline.h"
 #include "tests/solver/reference_problems.h"
+#include "tests/solver/same_waveforms.h"
 
 namespace asgard {
 namespace {
@@ -26,22 +26,7 @@ SceneRun SimulateWith(const std::string& text, int threads) {
 
 void ExpectSameRuns(const SceneRun& a, const SceneRun& b) {
   ASSERT_TRUE(a.simulation && b.simulation);
-  const solver::Simulation& sa = *a.simulation;
-  const solver::Simulation& sb = *b.simulation;
-  ASSERT_EQ(sa.component_count(), sb.component_count());
-  for (int c = 0; c < sa.component_count(); ++c) {
-    const auto& wa = sa.component(c).waveform();
-    const auto& wb = sb.component(c).waveform();
-    ASSERT_EQ(wa.size(), wb.size()) << "component " << c;
-    const size_t bytes = static_cast<size_t>(wa.variable_count()) * sizeof(double);
-    for (int k = 0; k < wa.size(); ++k) {
-      ASSERT_EQ(wa.time(k), wb.time(k)) << "component " << c << " sample " << k;
-      ASSERT_EQ(std::memcmp(wa.x(k), wb.x(k), bytes), 0) << "component " << c << " sample " << k;
-      ASSERT_EQ(std::memcmp(wa.f(k), wb.f(k), bytes), 0) << "component " << c << " sample " << k;
-      ASSERT_EQ(std::memcmp(wa.bubble(k), wb.bubble(k), bytes), 0)
-          << "component " << c << " sample " << k;
-    }
-  }
+  testing::ExpectSameWaveforms(*a.simulation, *b.simulation);
   ASSERT_EQ(a.collisions != nullptr, b.collisions != nullptr);
   if (!a.collisions) return;
   const auto& ia = a.collisions->impacts();
