@@ -773,14 +773,22 @@ bool CollisionMonitor::CheckEpoch() {
   window_pairs_.insert(window_pairs_.end(), found.begin(), found.end());
   std::sort(window_pairs_.begin(), window_pairs_.end());
   window_pairs_.erase(std::unique(window_pairs_.begin(), window_pairs_.end()), window_pairs_.end());
+  // Each body's latest event in this window, from e0: a pair is searched
+  // from the later of its bodies'.  Only impacts inside the window count:
+  // after a rollback, later impacts of other pairs may still be on record.
+  // (One pass over the window's events, not one per pair: a pile's window
+  // holds hundreds of pairs and, between its islands' events, dozens of
+  // events of up to a hundred bodies each.)
+  window_event_.assign(n, e0);
+  for (auto it = impacts_.rbegin(); it != impacts_.rend() && it->t >= e0; ++it)
+    if (it->t < e1)
+      ForEachBodyOf(
+          *it, n, [&](size_t body) { window_event_[body] = std::max(window_event_[body], it->t); });
   std::optional<Impact> best;
   for (auto [a, b] : window_pairs_) {
     if (!Tested(a, b)) continue;
-    double start = e0;
-    // Only impacts inside this window count: after a rollback, later
-    // impacts of other pairs may still be on record.
-    for (auto it = impacts_.rbegin(); it != impacts_.rend() && it->t >= e0; ++it)
-      if (it->t < e1 && (Involves(*it, a) || Involves(*it, b))) start = std::max(start, it->t);
+    double start =
+        std::max(window_event_[static_cast<size_t>(a)], window_event_[static_cast<size_t>(b)]);
     // A contact its island holds is looked at again when the hop lands.
     start = std::max(start, HeldUntil(a, b, e0 - epoch_length_));
     if (start >= e1) continue;
@@ -791,7 +799,7 @@ bool CollisionMonitor::CheckEpoch() {
     // A pair whose bodies have not changed since it was last searched over
     // the same interval gives the same answer (an event elsewhere in the
     // window restarts the check of every pair).
-    PairMemo& memo = memo_[{a, b}];
+    PairMemo& memo = memo_[static_cast<uint64_t>(a) << 32 | static_cast<uint32_t>(b)];
     std::optional<Impact> impact;
     if (memo.valid && memo.start == start && memo.end == e1 && memo.version_a == version_[a] &&
         memo.version_b == version_[b]) {

@@ -40,10 +40,12 @@
 // re-detected: after an impact its threshold shrinks below the gap it left.
 #pragma once
 
+#include <cstdint>
 #include <map>
 #include <memory>
 #include <set>
 #include <string>
+#include <unordered_map>
 #include <vector>
 
 #include "core/collide/collide.h"
@@ -319,7 +321,8 @@ class CollisionMonitor {
     long version_a = 0, version_b = 0;
     std::optional<Impact> result;
   };
-  std::map<std::pair<int, int>, PairMemo> memo_;
+  std::unordered_map<uint64_t, PairMemo> memo_;  // by the pair (a < b) as a << 32 | b
+  std::vector<double> window_event_;             // per body (CheckEpoch)
   std::vector<long> version_;
   CollisionCounters counters_;
   bool responding_ = false;
