@@ -719,6 +719,20 @@ void Component::Rates(const Mode& m, double t, const double* y, const double* fy
 // The ESDIRK stage whose value checks the step's interpolant (DenseError).
 constexpr int kDenseCheckStage = 2;
 
+namespace {
+
+// The cubic Hermite value's weights at fraction s of a step of length h
+// (HermiteAt's first four, without the divisions its rates need).
+struct CubicWeights {
+  double x0, f0, x1, f1;
+};
+CubicWeights CubicAt(double s, double h) {
+  const double s2 = s * s, s3 = s2 * s;
+  return {2 * s3 - 3 * s2 + 1, (s3 - 2 * s2 + s) * h, -2 * s3 + 3 * s2, (s3 - s2) * h};
+}
+
+}  // namespace
+
 // One step of kEsdirk32 (esdirk.h) from the last sample: three Newton
 // solves with the one matrix I − γhJ.  Leaves the solution in y_, its tape
 // outputs in fy_ and the filtered error estimate in est_.
@@ -731,21 +745,47 @@ bool Component::EsdirkStep(Mode& m, double h, bool landing) {
   const double* f = wave_.f(k);
   const double a = E.gamma * h;
   if (!FactorMatrix(m, a)) return false;
-  // Stage rates: the sample's, then two kept, then the last in fy_.
+  // Stage rates: the sample's, then two kept, then the last in fy_; the
+  // first implicit stage's value is kept in k_[4] (the explicit pair's
+  // scratch), the dense check's in k_[3].
   const double* ks[4] = {f, k_[1].data(), k_[2].data(), fy_.data()};
+  // Predictors.  The first implicit stage's: the last step's cubic carried
+  // on to the stage's time (where the last step was not a restart; else
+  // the sample's rate held over the stage).  The later stages': the cubic
+  // through the sample and the first implicit stage, values and rates, at
+  // the stage's time.  A prescribed row extrapolates its value along its
+  // rate.  (From the rate held over each stage, a pendulum on a stiff
+  // spring (ω0 = 100, 20 s, rtol 1e-6) took 60 256 Newton iterations and
+  // 3 167 Jacobians for its 5 918 ESDIRK steps; from these, 50 875 and 587.)
+  const bool history = k >= 1 && !wave_.info(k).restart;
+  const double hp = history ? t - wave_.time(k - 1) : 0.0;
   for (int i = 1; i < 4; ++i) {
     for (size_t j = 0; j < n; ++j) {
       double sum = 0.0;
       for (int l = 0; l < i; ++l) sum += E.a[i][l] * ks[l][j];
       c_[j] = x[j] + h * sum;
-      // Predictor: the previous stage's rate held over this stage; a
-      // prescribed row extrapolates its value along its rate.
-      y_[j] = m.prescribed[j] ? x[j] + E.c[i] * h * f[j] : c_[j] + a * ks[i - 1][j];
     }
+    if (i == 1 && history) {
+      const CubicWeights w = CubicAt(1.0 + E.c[1] * h / hp, hp);
+      const double* xp = wave_.x(k - 1);
+      const double* fp = wave_.f(k - 1);
+      for (size_t j = 0; j < n; ++j)
+        y_[j] = w.x0 * xp[j] + w.f0 * fp[j] + w.x1 * x[j] + w.f1 * f[j];
+    } else if (i == 1) {
+      for (size_t j = 0; j < n; ++j) y_[j] = c_[j] + a * f[j];
+    } else {
+      const CubicWeights w = CubicAt(E.c[i] / E.c[1], E.c[1] * h);
+      const double* z1 = k_[4].data();
+      for (size_t j = 0; j < n; ++j)
+        y_[j] = w.x0 * x[j] + w.f0 * f[j] + w.x1 * z1[j] + w.f1 * ks[1][j];
+    }
+    for (size_t j = 0; j < n; ++j)
+      if (m.prescribed[j]) y_[j] = x[j] + E.c[i] * h * f[j];
     double* rates = i < 3 ? k_[i].data() : fy_.data();
     const bool last = i == 3;
     if (!Newton(m, last ? t + h : t + E.c[i] * h, a, c_.data(), y_.data(), rates, last && landing))
       return false;
+    if (i == 1) std::copy(y_.begin(), y_.end(), k_[4].begin());
     if (i == kDenseCheckStage) std::copy(y_.begin(), y_.end(), k_[3].begin());
   }
   for (size_t j = 0; j < n; ++j) {
