@@ -291,7 +291,9 @@ struct SolverContact {
 // sweeps or until the largest impulse change is below `tolerance` (an
 // impulse).  Where the sweeps stall (a stack), the island is solved at once
 // by Newton's method in the bodies' velocities, friction cone included, and
-// the sweeps go on from there (contact_solver.cc).  Returns the sweeps taken.
+// the sweeps go on from there; an island that slides (where that step does
+// not apply) gets a few dozen sweeps more at most (contact_solver.cc).
+// Returns the sweeps taken.
 int SolveContacts(std::vector<BodyState>& bodies, std::vector<SolverContact>& contacts,
                   int max_sweeps, double tolerance);
 
