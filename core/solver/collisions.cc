@@ -776,21 +776,38 @@ bool CollisionMonitor::CheckEpoch() {
   // Each body's latest event in this window, from e0: a pair is searched
   // from the later of its bodies'.  Only impacts inside the window count:
   // after a rollback, later impacts of other pairs may still be on record.
-  // (One pass over the window's events, not one per pair: a pile's window
-  // holds hundreds of pairs and, between its islands' events, dozens of
-  // events of up to a hundred bodies each.)
+  // And each body's last event on record back to the window before (its
+  // index; HeldUntil).  One pass over those events, not one per pair: a
+  // pile's window holds hundreds of pairs and, between its islands' events,
+  // dozens of events of up to a hundred bodies each.
+  const double held_from = e0 - epoch_length_;
   window_event_.assign(n, e0);
-  for (auto it = impacts_.rbegin(); it != impacts_.rend() && it->t >= e0; ++it)
-    if (it->t < e1)
-      ForEachBodyOf(
-          *it, n, [&](size_t body) { window_event_[body] = std::max(window_event_[body], it->t); });
+  last_event_.assign(n, -1);
+  last_place_.resize(n);
+  for (size_t i = impacts_.size(); i-- > 0 && impacts_[i].t >= held_from;) {
+    const Impact& x = impacts_[i];
+    const int listed = static_cast<int>(x.bodies.size());
+    // Its place in the event's list of bodies (`listed`: not in it).
+    auto note = [&](int body, int place) {
+      if (body < 0 || static_cast<size_t>(body) >= n) return;
+      const auto b = static_cast<size_t>(body);
+      if (last_event_[b] < 0) {
+        last_event_[b] = static_cast<long>(i);
+        last_place_[b] = place;
+      }
+      if (x.t >= e0 && x.t < e1) window_event_[b] = std::max(window_event_[b], x.t);
+    };
+    for (int k = 0; k < listed; ++k) note(x.bodies[static_cast<size_t>(k)], k);
+    note(x.a, listed);
+    note(x.b, listed);
+  }
   std::optional<Impact> best;
   for (auto [a, b] : window_pairs_) {
     if (!Tested(a, b)) continue;
     double start =
         std::max(window_event_[static_cast<size_t>(a)], window_event_[static_cast<size_t>(b)]);
     // A contact its island holds is looked at again when the hop lands.
-    start = std::max(start, HeldUntil(a, b, e0 - epoch_length_));
+    start = std::max(start, HeldUntil(a, b));
     if (start >= e1) continue;
     // Two bodies that cannot move (static or asleep) cannot collide; a
     // sleeping body is woken only by an event, which restarts the window.
@@ -864,30 +881,30 @@ Eigen::Vector3d CollisionMonitor::AccelAt(int body, double t, double t1) const {
   return acc;
 }
 
-double CollisionMonitor::HeldUntil(int a, int b, double from) const {
-  auto moving = [&](const Impact& x, int body) {
-    return sys_.bodies[body].first_var >= 0 && Involves(x, body);
+double CollisionMonitor::HeldUntil(int a, int b) const {
+  // The latest event of either moving body (the later in order of their
+  // last events on record, back to the window before; CheckEpoch).
+  auto last = [&](int body) {
+    return sys_.bodies[body].first_var >= 0 ? last_event_[static_cast<size_t>(body)] : -1L;
   };
-  // The latest event of either moving body is at the later of their latest
-  // event times; among the events at that time, the last in order.
-  const double ta = sys_.bodies[a].first_var >= 0 ? LatestEvent(a) : -kInf;
-  const double tb = sys_.bodies[b].first_var >= 0 ? LatestEvent(b) : -kInf;
-  const double latest = std::max(ta, tb);
-  if (!(latest >= from)) return -kInf;
-  const auto after = std::upper_bound(impacts_.begin(), impacts_.end(), latest,
-                                      [](double t, const Impact& x) { return t < x.t; });
-  for (auto it = std::make_reverse_iterator(after); it != impacts_.rend() && it->t >= from; ++it) {
-    if (!moving(*it, a) && !moving(*it, b)) continue;
-    // The latest event of either moving body: only a resting one holds.
-    if (!it->resting || it->held.empty()) return -kInf;
-    const auto& list = it->bodies;
-    const auto ia = std::find(list.begin(), list.end(), a) - list.begin();
-    const auto ib = std::find(list.begin(), list.end(), b) - list.begin();
-    const std::pair<int, int> key = std::minmax(static_cast<int>(ia), static_cast<int>(ib));
-    const auto at = std::lower_bound(it->held.begin(), it->held.end(), key);
-    return at != it->held.end() && *at == key ? it->held_until[at - it->held.begin()] : -kInf;
-  }
-  return -kInf;
+  const long i = std::max(last(a), last(b));
+  if (i < 0) return -kInf;
+  const Impact& x = impacts_[static_cast<size_t>(i)];
+  // Only a resting one holds.
+  if (!x.resting || x.held.empty()) return -kInf;
+  // The pair's places in its list of bodies: a moving body whose last
+  // event is an earlier one is not in it; a static one may be in the lists
+  // of later events too, and is looked for.
+  const int listed = static_cast<int>(x.bodies.size());
+  auto place = [&](int body) {
+    const auto b = static_cast<size_t>(body);
+    if (last_event_[b] == i) return last_place_[b];
+    if (sys_.bodies[body].first_var >= 0) return listed;
+    return static_cast<int>(std::find(x.bodies.begin(), x.bodies.end(), body) - x.bodies.begin());
+  };
+  const std::pair<int, int> key = std::minmax(place(a), place(b));
+  const auto at = std::lower_bound(x.held.begin(), x.held.end(), key);
+  return at != x.held.end() && *at == key ? x.held_until[at - x.held.begin()] : -kInf;
 }
 
 std::optional<Impact> CollisionMonitor::FirstImpact(int a, int b, double start, double end) {

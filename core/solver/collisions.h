@@ -147,8 +147,9 @@ class CollisionMonitor {
   bool CheckEpoch();
   std::optional<Impact> FirstImpact(int a, int b, double start, double end);
   // The time until which the pair is held by its island's latest resting
-  // event (Impact::hold), or -inf; `from` bounds how far back to look.
-  double HeldUntil(int a, int b, double from) const;
+  // event (Impact::hold), or -inf: the latest event of either body on
+  // record back to the window before the current one (CheckEpoch's pass).
+  double HeldUntil(int a, int b) const;
   // The time of the latest recorded event that involves the body, or -inf
   // (kept per body: NoteEvent on insertion; an erased event makes its
   // bodies' entries stale, found again by a scan when next asked).
@@ -323,6 +324,8 @@ class CollisionMonitor {
   };
   std::unordered_map<uint64_t, PairMemo> memo_;  // by the pair (a < b) as a << 32 | b
   std::vector<double> window_event_;             // per body (CheckEpoch)
+  std::vector<long> last_event_;                 // per body: index in impacts_ (HeldUntil)
+  std::vector<int> last_place_;                  // and its place in that event's bodies
   std::vector<long> version_;
   CollisionCounters counters_;
   bool responding_ = false;
