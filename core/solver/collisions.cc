@@ -907,26 +907,39 @@ double CollisionMonitor::HeldUntil(int a, int b) const {
   return at != x.held.end() && *at == key ? x.held_until[at - x.held.begin()] : -kInf;
 }
 
+const CollisionMonitor::SearchSpan& CollisionMonitor::SpanOf(int body, double t0, double t1) {
+  if (spans_.size() != bodies_.size()) spans_.resize(bodies_.size());
+  SearchSpan& s = spans_[static_cast<size_t>(body)];
+  const long version = version_[static_cast<size_t>(body)];
+  if (s.valid && s.t0 == t0 && s.t1 == t1 && s.version == version) return s;
+  s.valid = true;
+  s.t0 = t0;
+  s.t1 = t1;
+  s.version = version;
+  s.motion = MotionOf(body, t0, t1);
+  s.accel = AccelAt(body, t0, t1);
+  s.accel_bound = AccelBound(body, t0, t1, s.accel);
+  const physics::BodyModel& m = sys_.bodies[body];
+  s.velocity.setZero();
+  if (m.first_var >= 0)
+    for (int k = 0; k < 3; ++k) s.velocity[k] = sim_.Rate(m.first_var + physics::kX + k, t0);
+  s.pose = PoseAt(body, t0);
+  return s;
+}
+
 std::optional<Impact> CollisionMonitor::FirstImpact(int a, int b, double start, double end) {
-  collide::Motion ma = MotionOf(a, start, end), mb = MotionOf(b, start, end);
+  const SearchSpan& sa = SpanOf(a, start, end);
+  const SearchSpan& sb = SpanOf(b, start, end);
+  collide::Motion ma = sa.motion, mb = sb.motion;
   // Distance changes at most as fast as the relative velocity: bound it by
   // its value at the start plus both bodies' largest accelerations over the
   // window (two balls moving together close at 0, not at |v_a| + |v_b|).
   {
-    auto rate = [&](int body) {
-      const physics::BodyModel& m = sys_.bodies[body];
-      Eigen::Vector3d v = Eigen::Vector3d::Zero();
-      if (m.first_var >= 0)
-        for (int k = 0; k < 3; ++k) v[k] = sim_.Rate(m.first_var + physics::kX + k, start);
-      return v;
-    };
     // |Δa(t)| ≤ |Δa(start)| + both bodies' deviations from their start
     // accelerations: two bodies falling together close at nothing.
-    const Eigen::Vector3d aa = AccelAt(a, start, end), ab = AccelAt(b, start, end);
     const double dv =
-        ((ab - aa).norm() + AccelBound(a, start, end, aa) + AccelBound(b, start, end, ab)) *
-        (end - start);
-    const double relative = (rate(a) - rate(b)).norm() + dv;
+        ((sb.accel - sa.accel).norm() + sa.accel_bound + sb.accel_bound) * (end - start);
+    const double relative = (sa.velocity - sb.velocity).norm() + dv;
     const double sum = ma.max_linear_speed + mb.max_linear_speed;
     if (relative < sum) {
       ma.max_linear_speed = relative;
@@ -942,7 +955,7 @@ std::optional<Impact> CollisionMonitor::FirstImpact(int a, int b, double start, 
   };
   std::optional<Impact> first;
   const double graze = kGraze * std::min(bodies_[a].radius, bodies_[b].radius);
-  const collide::Pose pa0 = PoseAt(a, start), pb0 = PoseAt(b, start);
+  const collide::Pose pa0 = sa.pose, pb0 = sb.pose;
   auto take = [&](double t, const Eigen::Vector3d& point, const Eigen::Vector3d& normal) {
     if (first && first->t <= t) return;
     Impact imp;

@@ -216,6 +216,21 @@ class CollisionMonitor {
   std::vector<int> RestingAxes(int body, const Eigen::Vector3d& n_into, bool partner_movable,
                                double t, Eigen::Vector3d& v);
   collide::Motion MotionOf(int body, double t0, double t1) const;
+  // What a time-of-impact search over [t0, t1] reads of one body: its
+  // motion bounds, its acceleration at t0 and its bound over the interval,
+  // its velocity and pose at t0.  Kept per body while the interval and the
+  // body's version stay the same (a body is searched against each of its
+  // neighbours from the same start: two thirds of a pile's searches).
+  struct SearchSpan {
+    bool valid = false;
+    double t0 = 0.0, t1 = 0.0;
+    long version = 0;
+    collide::Motion motion;
+    Eigen::Vector3d accel = Eigen::Vector3d::Zero(), velocity = Eigen::Vector3d::Zero();
+    double accel_bound = 0.0;
+    collide::Pose pose;
+  };
+  const SearchSpan& SpanOf(int body, double t0, double t1);
   // The longest interval [from, until] ∋ [t0, t1] over which the body's pose
   // is exactly constant in its waveforms (every interval from its sample at
   // t0 on has equal values, zero rates and no bubble), or nothing when it
@@ -326,6 +341,7 @@ class CollisionMonitor {
   std::vector<double> window_event_;             // per body (CheckEpoch)
   std::vector<long> last_event_;                 // per body: index in impacts_ (HeldUntil)
   std::vector<int> last_place_;                  // and its place in that event's bodies
+  std::vector<SearchSpan> spans_;                // per body (SpanOf)
   std::vector<long> version_;
   CollisionCounters counters_;
   bool responding_ = false;
