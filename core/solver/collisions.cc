@@ -780,32 +780,35 @@ bool CollisionMonitor::CheckEpoch() {
   // index; HeldUntil).  One pass over those events, not one per pair: a
   // pile's window holds hundreds of pairs and, between its islands' events,
   // dozens of events of up to a hundred bodies each.
+  // (Entries are stamped with the pass, so that a pass costs the events it
+  // reads, not the bodies: a thousand bodies at rest have no events.)
   const double held_from = e0 - epoch_length_;
-  window_event_.assign(n, e0);
-  last_event_.assign(n, -1);
-  last_place_.resize(n);
+  recent_.resize(n);
+  ++recent_pass_;
   for (size_t i = impacts_.size(); i-- > 0 && impacts_[i].t >= held_from;) {
     const Impact& x = impacts_[i];
     const int listed = static_cast<int>(x.bodies.size());
     // Its place in the event's list of bodies (`listed`: not in it).
     auto note = [&](int body, int place) {
       if (body < 0 || static_cast<size_t>(body) >= n) return;
-      const auto b = static_cast<size_t>(body);
-      if (last_event_[b] < 0) {
-        last_event_[b] = static_cast<long>(i);
-        last_place_[b] = place;
+      RecentEvents& r = recent_[static_cast<size_t>(body)];
+      if (r.pass != recent_pass_) {
+        r = RecentEvents{recent_pass_, e0, static_cast<long>(i), place};
       }
-      if (x.t >= e0 && x.t < e1) window_event_[b] = std::max(window_event_[b], x.t);
+      if (x.t >= e0 && x.t < e1) r.window = std::max(r.window, x.t);
     };
     for (int k = 0; k < listed; ++k) note(x.bodies[static_cast<size_t>(k)], k);
     note(x.a, listed);
     note(x.b, listed);
   }
+  auto window_event = [&](int body) {
+    const RecentEvents& r = recent_[static_cast<size_t>(body)];
+    return r.pass == recent_pass_ ? r.window : e0;
+  };
   std::optional<Impact> best;
   for (auto [a, b] : window_pairs_) {
     if (!Tested(a, b)) continue;
-    double start =
-        std::max(window_event_[static_cast<size_t>(a)], window_event_[static_cast<size_t>(b)]);
+    double start = std::max(window_event(a), window_event(b));
     // A contact its island holds is looked at again when the hop lands.
     start = std::max(start, HeldUntil(a, b));
     if (start >= e1) continue;
@@ -884,9 +887,11 @@ Eigen::Vector3d CollisionMonitor::AccelAt(int body, double t, double t1) const {
 double CollisionMonitor::HeldUntil(int a, int b) const {
   // The latest event of either moving body (the later in order of their
   // last events on record, back to the window before; CheckEpoch).
-  auto last = [&](int body) {
-    return sys_.bodies[body].first_var >= 0 ? last_event_[static_cast<size_t>(body)] : -1L;
+  auto last_of = [&](int body) {
+    const RecentEvents& r = recent_[static_cast<size_t>(body)];
+    return r.pass == recent_pass_ ? r.last : -1L;
   };
+  auto last = [&](int body) { return sys_.bodies[body].first_var >= 0 ? last_of(body) : -1L; };
   const long i = std::max(last(a), last(b));
   if (i < 0) return -kInf;
   const Impact& x = impacts_[static_cast<size_t>(i)];
@@ -897,8 +902,7 @@ double CollisionMonitor::HeldUntil(int a, int b) const {
   // of later events too, and is looked for.
   const int listed = static_cast<int>(x.bodies.size());
   auto place = [&](int body) {
-    const auto b = static_cast<size_t>(body);
-    if (last_event_[b] == i) return last_place_[b];
+    if (last_of(body) == i) return recent_[static_cast<size_t>(body)].place;
     if (sys_.bodies[body].first_var >= 0) return listed;
     return static_cast<int>(std::find(x.bodies.begin(), x.bodies.end(), body) - x.bodies.begin());
   };

@@ -338,9 +338,18 @@ class CollisionMonitor {
     std::optional<Impact> result;
   };
   std::unordered_map<uint64_t, PairMemo> memo_;  // by the pair (a < b) as a << 32 | b
-  std::vector<double> window_event_;             // per body (CheckEpoch)
-  std::vector<long> last_event_;                 // per body: index in impacts_ (HeldUntil)
-  std::vector<int> last_place_;                  // and its place in that event's bodies
+  // Per body, from CheckEpoch's pass over the recent events (valid where
+  // `pass` is recent_pass_): its latest event in the window (from e0), its
+  // last event on record back to the window before (index in impacts_,
+  // HeldUntil) and its place in that event's bodies.
+  struct RecentEvents {
+    long pass = -1;
+    double window = 0.0;
+    long last = -1;
+    int place = 0;
+  };
+  std::vector<RecentEvents> recent_;
+  long recent_pass_ = 0;
   std::vector<SearchSpan> spans_;                // per body (SpanOf)
   std::vector<long> version_;
   CollisionCounters counters_;
