@@ -49,11 +49,15 @@
 // evaluation of f; a component holding jointed bodies takes its Jacobian by
 // difference quotients of the whole f.
 //
-// Newton: the iteration matrix M = I − a J is built from the symbolic
-// Jacobian at the start of the step and factored once per step size (dense LU
-// or KLU, see linear_solver.h); iterations stop when the remaining error,
-// estimated from the contraction rate ρ as ‖Δ‖ρ/(1−ρ), is below 2% of the
-// tolerance (the first update, which has no rate, must be below 0.2%).
+// Newton: the iteration matrix M = I − a J is built from the Jacobian of a
+// recent sample (symbolic, or differenced for small components; reused
+// while Newton converges briskly) and factored once per step size (dense
+// LU or KLU, see linear_solver.h); iterations stop when the remaining
+// error, estimated from the contraction rate ρ as ‖Δ‖ρ/(1−ρ), is below 1e-4
+// of the tolerance (kNewtonTol, component.cc, says why so far below).  An
+// ESDIRK stage starts from a cubic: the first implicit stage from the last
+// step's, carried on to its time; the later ones from the cubic through
+// the sample and the first implicit stage.
 //
 // Error control: weights w = atol + rtol·max(|x|, |y|), max norm.
 //   DP5:     the embedded 5th − 4th order difference.
