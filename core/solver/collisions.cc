@@ -170,8 +170,6 @@ CollisionMonitor::CollisionMonitor(Simulation& sim, double separation)
   open_.Reset(sys_.bodies.size());
   bodies_of_component_.resize(sim.component_count());
   version_.assign(sys_.bodies.size(), 0);
-  latest_event_.assign(sys_.bodies.size(), -kInf);
-  latest_stale_.assign(sys_.bodies.size(), 0);
   double min_radius = kInf;
   for (size_t b = 0; b < sys_.bodies.size(); ++b) {
     const physics::BodyModel& m = sys_.bodies[b];
@@ -273,45 +271,6 @@ void CollisionMonitor::AdoptImpacts(const std::vector<Impact>& impacts) {
   // Stable: events of one pair at one instant (a jam, a resting island) keep
   // the order they happened in, which SlowEvents reads.
   std::stable_sort(impacts_.begin(), impacts_.end(), ImpactOrder);
-  for (const Impact& x : impacts) NoteEvent(x);
-}
-
-namespace {
-
-// Each body an event involves (its pair and its island), within [0, n).
-template <typename F>
-void ForEachBodyOf(const Impact& impact, size_t n, F&& f) {
-  auto visit = [&](int body) {
-    if (body >= 0 && static_cast<size_t>(body) < n) f(static_cast<size_t>(body));
-  };
-  visit(impact.a);
-  visit(impact.b);
-  for (int body : impact.bodies) visit(body);
-}
-
-}  // namespace
-
-void CollisionMonitor::NoteEvent(const Impact& impact) {
-  ForEachBodyOf(impact, latest_event_.size(),
-                [&](size_t b) { latest_event_[b] = std::max(latest_event_[b], impact.t); });
-}
-
-void CollisionMonitor::ForgetEvent(const Impact& impact) {
-  ForEachBodyOf(impact, latest_stale_.size(), [&](size_t b) { latest_stale_[b] = 1; });
-}
-
-double CollisionMonitor::LatestEvent(int body) const {
-  const auto b = static_cast<size_t>(body);
-  if (latest_stale_[b]) {
-    latest_event_[b] = -kInf;
-    for (auto it = impacts_.rbegin(); it != impacts_.rend(); ++it)
-      if (Involves(*it, body)) {
-        latest_event_[b] = it->t;
-        break;
-      }
-    latest_stale_[b] = 0;
-  }
-  return latest_event_[b];
 }
 
 bool CollisionMonitor::Tested(int a, int b) const {
@@ -1397,7 +1356,6 @@ void CollisionMonitor::Respond(const Impact& impact) {
   ++counters_.impacts;
   auto pos = std::upper_bound(impacts_.begin(), impacts_.end(), recorded, ImpactOrder);
   impacts_.insert(pos, recorded);
-  NoteEvent(recorded);
   for (int s = 0; s < 2; ++s) {
     if (!movable[s]) continue;
     const physics::BodyModel& m = sys_.bodies[ids[s]];
@@ -1695,7 +1653,6 @@ void CollisionMonitor::RespondResting(const Impact& impact) {
   counters_.contacts_solved += static_cast<long>(contacts.size());
   auto pos = std::upper_bound(impacts_.begin(), impacts_.end(), recorded, ImpactOrder);
   impacts_.insert(pos, recorded);
-  NoteEvent(recorded);
   for (int body : members) {
     const physics::BodyModel& m = sys_.bodies[body];
     const auto it = shift.find(body);
@@ -1818,7 +1775,6 @@ void CollisionMonitor::AfterTruncate() {
         if (Involves(impacts_[i], b)) {
           const Impact imp = std::move(impacts_[i]);
           impacts_.erase(impacts_.begin() + static_cast<long>(i));
-          ForgetEvent(imp);
           ++counters_.invalidated_impacts;
           // Both bodies' jumps at the impact are void; the partner's data
           // after it must be recomputed.

@@ -150,12 +150,6 @@ class CollisionMonitor {
   // event (Impact::hold), or -inf: the latest event of either body on
   // record back to the window before the current one (CheckEpoch's pass).
   double HeldUntil(int a, int b) const;
-  // The time of the latest recorded event that involves the body, or -inf
-  // (kept per body: NoteEvent on insertion; an erased event makes its
-  // bodies' entries stale, found again by a scan when next asked).
-  double LatestEvent(int body) const;
-  void NoteEvent(const Impact& impact);
-  void ForgetEvent(const Impact& impact);
   void Respond(const Impact& impact);
   struct PairContact {
     int a = -1, b = -1;
@@ -324,8 +318,6 @@ class CollisionMonitor {
   std::vector<std::vector<int>> bodies_of_component_;
   std::set<std::pair<int, int>> excluded_;    // directly linked parts of one artbody
   std::vector<Impact> impacts_;               // sorted by time
-  mutable std::vector<double> latest_event_;  // per body (LatestEvent)
-  mutable std::vector<char> latest_stale_;
   std::set<std::pair<int, int>> overlap_warned_;
   std::vector<std::pair<int, double>> truncated_;  // (body, kept) awaiting AfterTruncate
   std::vector<scene::Diagnostic> warnings_;
