@@ -167,6 +167,8 @@ CollisionMonitor::CollisionMonitor(Simulation& sim, double separation)
     : sim_(sim), sys_(sim.system()), separation_(separation) {
   epoch_length_ = (sys_.t1 - sys_.t0) / kEpochs;
   bodies_.resize(sys_.bodies.size());
+  recent_.resize(sys_.bodies.size());
+  spans_.resize(sys_.bodies.size());
   open_.Reset(sys_.bodies.size());
   bodies_of_component_.resize(sim.component_count());
   version_.assign(sys_.bodies.size(), 0);
@@ -742,7 +744,6 @@ bool CollisionMonitor::CheckEpoch() {
   // (Entries are stamped with the pass, so that a pass costs the events it
   // reads, not the bodies: a thousand bodies at rest have no events.)
   const double held_from = e0 - epoch_length_;
-  recent_.resize(n);
   ++recent_pass_;
   for (size_t i = impacts_.size(); i-- > 0 && impacts_[i].t >= held_from;) {
     const Impact& x = impacts_[i];
@@ -871,7 +872,6 @@ double CollisionMonitor::HeldUntil(int a, int b) const {
 }
 
 const CollisionMonitor::SearchSpan& CollisionMonitor::SpanOf(int body, double t0, double t1) {
-  if (spans_.size() != bodies_.size()) spans_.resize(bodies_.size());
   SearchSpan& s = spans_[static_cast<size_t>(body)];
   const long version = version_[static_cast<size_t>(body)];
   if (s.valid && s.t0 == t0 && s.t1 == t1 && s.version == version) return s;

@@ -719,20 +719,6 @@ void Component::Rates(const Mode& m, double t, const double* y, const double* fy
 // The ESDIRK stage whose value checks the step's interpolant (DenseError).
 constexpr int kDenseCheckStage = 2;
 
-namespace {
-
-// The cubic Hermite value's weights at fraction s of a step of length h
-// (HermiteAt's first four, without the divisions its rates need).
-struct CubicWeights {
-  double x0, f0, x1, f1;
-};
-CubicWeights CubicAt(double s, double h) {
-  const double s2 = s * s, s3 = s2 * s;
-  return {2 * s3 - 3 * s2 + 1, (s3 - 2 * s2 + s) * h, -2 * s3 + 3 * s2, (s3 - s2) * h};
-}
-
-}  // namespace
-
 // One step of kEsdirk32 (esdirk.h) from the last sample: three Newton
 // solves with the one matrix I − γhJ.  Leaves the solution in y_, its tape
 // outputs in fy_ and the filtered error estimate in est_.
@@ -757,8 +743,8 @@ bool Component::EsdirkStep(Mode& m, double h, bool landing) {
   // rate.  (From the rate held over each stage, a pendulum on a stiff
   // spring (ω0 = 100, 20 s, rtol 1e-6) took 60 256 Newton iterations and
   // 3 167 Jacobians for its 5 918 ESDIRK steps; from these, 50 875 and 587.)
-  const bool history = k >= 1 && !wave_.info(k).restart;
-  const double hp = history ? t - wave_.time(k - 1) : 0.0;
+  const double hp = k >= 1 && !wave_.info(k).restart ? t - wave_.time(k - 1) : 0.0;
+  const bool history = hp > 0.0;
   for (int i = 1; i < 4; ++i) {
     for (size_t j = 0; j < n; ++j) {
       double sum = 0.0;

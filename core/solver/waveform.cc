@@ -96,13 +96,19 @@ int Waveform::Locate(double t, Side side) const {
   return k;
 }
 
-HermiteWeights HermiteAt(double s, double h) {
+CubicWeights CubicAt(double s, double h) {
   const double s2 = s * s, s3 = s2 * s;
+  return {2 * s3 - 3 * s2 + 1, (s3 - 2 * s2 + s) * h, -2 * s3 + 3 * s2, (s3 - s2) * h};
+}
+
+HermiteWeights HermiteAt(double s, double h) {
+  const double s2 = s * s;
   const double u = s * (1 - s);
-  return {2 * s3 - 3 * s2 + 1,
-          (s3 - 2 * s2 + s) * h,
-          -2 * s3 + 3 * s2,
-          (s3 - s2) * h,
+  const CubicWeights c = CubicAt(s, h);
+  return {c.x0,
+          c.f0,
+          c.x1,
+          c.f1,
           u * u,
           (6 * s2 - 6 * s) / h,
           3 * s2 - 4 * s + 1,

@@ -46,6 +46,13 @@ struct HermiteWeights {
   double d00, d10, d01, d11, db;
 };
 HermiteWeights HermiteAt(double s, double h);
+// The value weights alone (HermiteAt's h00, h10, h01, h11, without the
+// divisions its rate weights need): for a cubic's value, in or beyond its
+// step (the ESDIRK's stage predictors extrapolate with it).
+struct CubicWeights {
+  double x0, f0, x1, f1;
+};
+CubicWeights CubicAt(double s, double h);
 
 // What the integrator needs to continue from a sample exactly as it did the
 // first time.
