@@ -273,6 +273,11 @@ struct SolverContact {
   Eigen::Vector3d normal = Eigen::Vector3d::UnitX();
   double friction = 0.0;
   double target = 0.0;  // least normal relative velocity after the solve
+  // The tangential relative velocity (b − a, world; its normal part is
+  // dropped) that a sticking contact is brought to, and that a sliding one's
+  // kinetic friction opposes the slip from: zero but where the contact is
+  // pressed along a slope over a hop (collisions.cc, RespondResting).
+  Eigen::Vector3d target_tangent = Eigen::Vector3d::Zero();
   // In: a guess of the solution (warm start), applied before the first
   // sweep — the normal impulse clamped at 0, the tangential one (world,
   // its normal part dropped) to the Coulomb disc.

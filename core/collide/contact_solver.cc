@@ -64,6 +64,7 @@ struct Row {
   Eigen::Matrix2d inv_kt = Eigen::Matrix2d::Zero();
   double kt_max = 0.0;  // largest eigenvalue of K_t
   Eigen::Vector2d lambda_t = Eigen::Vector2d::Zero();
+  Eigen::Vector2d target_t = Eigen::Vector2d::Zero();  // on t1 and t2
 };
 
 BodyState& Get(std::vector<BodyState>& bodies, int i, BodyState& world) {
@@ -259,7 +260,7 @@ class NewtonStep {
       if (row.inv_kn == 0.0) continue;
       p.active = true;
       p.mu = HasFriction(i) ? c.friction : 0.0;
-      p.target = c.target;
+      p.target << c.target, row.target_t;
       p.now << c.normal_impulse, row.lambda_t;
       if (p.mu == 0.0) p.now.tail<2>().setZero();
       p.ref = p.now;
@@ -338,7 +339,8 @@ class NewtonStep {
   struct Point {
     bool active = false;
     long a = -1, b = -1;  // movable blocks, −1: fixed
-    double mu = 0.0, r = 0.0, target = 0.0;
+    double mu = 0.0, r = 0.0;
+    Eigen::Vector3d target = Eigen::Vector3d::Zero();  // normal, t1, t2
     Eigen::Matrix<double, 3, 6> ja = Eigen::Matrix<double, 3, 6>::Zero(),
                                 jb = Eigen::Matrix<double, 3, 6>::Zero();
     Eigen::Vector3d fixed = Eigen::Vector3d::Zero();  // relative velocity of fixed sides
@@ -359,8 +361,7 @@ class NewtonStep {
   // steps converge).
   bool Slipping(const Point& p, const Eigen::VectorXd& v) const {
     if (p.zone != Zone::kSlide || p.lambda[0] <= tolerance_) return false;
-    Eigen::Vector3d y = p.ref - Relative(p, v) / p.r;
-    y[0] += p.target / p.r;
+    const Eigen::Vector3d y = p.ref - Relative(p, v) / p.r + p.target / p.r;
     return (y - p.lambda).norm() > std::max(p.lambda.norm(), 10.0 * tolerance_);
   }
   // The sweeps have a pressed point sliding on its rim faster than a tenth
@@ -372,7 +373,7 @@ class NewtonStep {
       if (row.inv_kn == 0.0 || !HasFriction(i) || c.normal_impulse <= tolerance_) continue;
       if (row.lambda_t.norm() < c.friction * c.normal_impulse * (1.0 - 1e-9)) continue;
       const Eigen::Vector3d u = VelocityAt(Side(c.b), row.rb) - VelocityAt(Side(c.a), row.ra);
-      const Eigen::Vector2d slip(u.dot(row.t1), u.dot(row.t2));
+      const Eigen::Vector2d slip = Eigen::Vector2d(u.dot(row.t1), u.dot(row.t2)) - row.target_t;
       if (slip.norm() * row.inv_kn > 0.1 * c.normal_impulse) return true;
     }
     return false;
@@ -392,8 +393,7 @@ class NewtonStep {
   // λ and ∂Π at relative velocity w.
   static Zone Impulse(const Point& p, const Eigen::Vector3d& w, Eigen::Vector3d& lambda,
                       Eigen::Matrix3d& dpi) {
-    Eigen::Vector3d y = p.ref - w / p.r;
-    y[0] += p.target / p.r;
+    const Eigen::Vector3d y = p.ref - w / p.r + p.target / p.r;
     if (p.mu > 0.0) return ProjectOnCone(y, p.mu, lambda, dpi);
     lambda.setZero();
     dpi.setZero();
@@ -573,6 +573,7 @@ int SolveContacts(std::vector<BodyState>& bodies, std::vector<SolverContact>& co
     row.t2 = row.n.cross(row.t1);
     row.ra = c.point - a.com;
     row.rb = c.point - b.com;
+    row.target_t = {c.target_tangent.dot(row.t1), c.target_tangent.dot(row.t2)};
     row.wa_n = a.inv_inertia * row.ra.cross(row.n);
     row.wa_t1 = a.inv_inertia * row.ra.cross(row.t1);
     row.wa_t2 = a.inv_inertia * row.ra.cross(row.t2);
@@ -630,7 +631,7 @@ int SolveContacts(std::vector<BodyState>& bodies, std::vector<SolverContact>& co
       change = std::max(change, std::abs(c.normal_impulse - old_n));
       if (c.friction > 0.0 && row.inv_kt(0, 0) > 0.0) {
         u = VelocityAt(b, row.rb) - VelocityAt(a, row.ra);
-        const Eigen::Vector2d ut(u.dot(row.t1), u.dot(row.t2));
+        const Eigen::Vector2d ut = Eigen::Vector2d(u.dot(row.t1), u.dot(row.t2)) - row.target_t;
         const Eigen::Vector2d old_t = row.lambda_t;
         const double limit = c.friction * c.normal_impulse;
         Eigen::Vector2d next = old_t - row.inv_kt * ut;  // sticking

@@ -148,7 +148,8 @@ class CollisionMonitor {
   std::optional<Impact> FirstImpact(int a, int b, double start, double end);
   // The time until which the pair is held by its island's latest resting
   // event (Impact::hold), or -inf: the latest event of either body on
-  // record back to the window before the current one (CheckEpoch's pass).
+  // record back to the longest hop before the current window (CheckEpoch's
+  // pass).
   double HeldUntil(int a, int b) const;
   void Respond(const Impact& impact);
   struct PairContact {
@@ -271,6 +272,9 @@ class CollisionMonitor {
   const physics::EquationSystem& sys_;
   double separation_;
   double epoch_length_;
+  // The longest hop of any resting event so far: the window check looks
+  // this far back for the holds that still apply (CheckEpoch, HeldUntil).
+  double longest_hop_ = 0.0;
   long epoch_ = 0;     // current epoch
   bool idle_ = false;  // no pair can collide: no windows are checked
   long pending_ = 0;   // collidable bodies not yet computed past its end
@@ -332,7 +336,7 @@ class CollisionMonitor {
   std::unordered_map<uint64_t, PairMemo> memo_;  // by the pair (a < b) as a << 32 | b
   // Per body, from CheckEpoch's pass over the recent events (valid where
   // `pass` is recent_pass_): its latest event in the window (from e0), its
-  // last event on record back to the window before (index in impacts_,
+  // last event on record back to the longest hop before (index in impacts_,
   // HeldUntil) and its place in that event's bodies.
   struct RecentEvents {
     long pass = -1;

@@ -692,8 +692,13 @@ TEST(Contact, AColumnOfFourCubesSettlesAndSleeps) {
     // On the one below, face on face: half a side above it, within the
     // hops (1e-3 of the size each) and landing gaps of the column.
     EXPECT_NEAR(Position(run, c, 3.0).y(), 0.5 + i, 4e-3) << c;
-    // Not pushed sideways off its place by more than a hop's drift.
-    EXPECT_NEAR(Position(run, c, 3.0).x(), x[i], 1e-3) << c;
+    // Not pushed off its place: the top cube lands 0.25 off the centre of
+    // the one below at 1.2 m/s and rocks the column, which shifts by a few
+    // millimetres while it settles (measured 1.4, 2.1, 1.4 and 2.9 mm with
+    // hops of 27 ms; 0.5 mm at most when the hop was a 1024th of the run,
+    // 2.9 ms).  Held to the 1% of the size that the piles' penetration is
+    // held to.
+    EXPECT_NEAR(Position(run, c, 3.0).x(), x[i], 1e-2) << c;
   }
   ExpectNoDeepOverlapAtAnyFrame(run, 3.0);
 }
@@ -760,31 +765,37 @@ TEST(Contact, ABoxOnAnInclineSlidesWhenFrictionIsBelowTheSlopeAndSticksOtherwise
     ASSERT_GT(mu, std::tan(theta));
     const SceneRun run = SimulateOk(Incline(theta, mu, t1), 1e-6, 1e-9);
     const double moved = (Position(run, "box", t1) - Position(run, "box", 0)).dot(down);
-    // Each hop drifts g sinθ Δ²/2 (Δ ≤ t1/1024) before friction stops it,
-    // for the dozen hops before it sleeps: well below 1e-3.
-    EXPECT_LT(std::abs(moved), 1e-3) << "mu " << mu;
+    // Its hops are centred along the slope (RespondResting), so each comes
+    // back to where it started: what is left is the first fall from the
+    // lift h = 1e-5 above the ramp, straight down, which is h tanθ along it
+    // (5.5e-6; measured 5.6e-6).  Uncentred, each hop of Δ = 28 ms crept
+    // g sinθ Δ²/2 before static friction stopped it: 2e-2 before it slept.
+    EXPECT_LT(std::abs(moved), 2e-5 * std::tan(theta)) << "mu " << mu;
     EXPECT_LT(KineticEnergy(run, run.equations->FindBody("box"), t1), 1e-12) << "mu " << mu;
   }
 }
 
 // Sliding on its four corners, the box must feel the whole kinetic friction
 // μ m g cosθ opposite to its slip.  The hop model holds the average normal
-// force exactly and applies the friction impulse once per hop of at most one
-// window Δ = t1/1024, so the distance is off by at most the slip the last
-// hop's friction has not yet taken, g Δ t1 (0.6%); it is measured at 2e-6.
-// By the scene's mirror symmetry in z, the box slides straight down the
-// slope without turning.  (Friction was once 6% short here: the solver
-// projected the anisotropic sticking impulse K_t⁻¹ u_t onto the friction
-// disc, which at a corner points 20° away from the slip.)
+// force exactly and applies the friction impulse once per hop (Δ = 28 ms
+// here), centred: each hop starts a_t Δ/2 up the slope from where the
+// contact's relative acceleration a_t takes it (RespondResting), so the
+// friction is not half a hop late.  The distance is then within the hop's
+// own rise, kHopHeight = 1e-3 of the radius (measured 1.1e-4 and 1.6e-4;
+// uncentred it was 2e-2 and 3.3e-2, 2–3% too far).  By the scene's mirror
+// symmetry in z, the box slides straight down the slope without turning.
+// (Friction was once 6% short here: the solver projected the anisotropic
+// sticking impulse K_t⁻¹ u_t onto the friction disc, which at a corner
+// points 20° away from the slip.)
 TEST(Contact, ABoxSlidingDownAnInclineCoversTheAnalyticDistance) {
   const double theta = 0.5, g = 9.81, t1 = 1.0;
   const Eigen::Vector3d down(-std::cos(theta), -std::sin(theta), 0.0);
-  const double window = t1 / 1024;
+  const double hop_height = 1e-3 * std::sqrt(3.0) / 2.0;
   for (double mu : {0.2, 0.3}) {
     const SceneRun run = SimulateOk(Incline(theta, mu, t1), 1e-6, 1e-9);
     const Eigen::Vector3d moved = Position(run, "box", t1) - Position(run, "box", 0);
     const double expected = 0.5 * g * (std::sin(theta) - mu * std::cos(theta)) * t1 * t1;
-    EXPECT_NEAR(moved.dot(down), expected, g * window * t1) << "mu " << mu;
+    EXPECT_NEAR(moved.dot(down), expected, hop_height) << "mu " << mu;
     // Straight: no drift across the slope (rounding only, amplified over
     // the ~1000 hops: far below the landing gap's 1e-8 of the size).
     EXPECT_NEAR(moved.z(), 0.0, 1e-8) << "mu " << mu;
