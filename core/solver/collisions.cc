@@ -271,6 +271,9 @@ CollisionMonitor::CollisionMonitor(Simulation& sim, double separation)
 
 void CollisionMonitor::AdoptImpacts(const std::vector<Impact>& impacts) {
   impacts_.insert(impacts_.end(), impacts.begin(), impacts.end());
+  // Their holds are looked for as far back as those of the run they come
+  // from (CheckEpoch): a longer look-back finds only holds that have ended.
+  for (const Impact& x : impacts) longest_hop_ = std::max(longest_hop_, x.hop);
   // Stable: events of one pair at one instant (a jam, a resting island) keep
   // the order they happened in, which SlowEvents reads.
   std::stable_sort(impacts_.begin(), impacts_.end(), ImpactOrder);
@@ -738,15 +741,26 @@ bool CollisionMonitor::CheckEpoch() {
   // Each body's latest event in this window, from e0: a pair is searched
   // from the later of its bodies'.  Only impacts inside the window count:
   // after a rollback, later impacts of other pairs may still be on record.
-  // And each body's last event on record back to the longest hop before (its
-  // index; HeldUntil).  One pass over those events, not one per pair: a
-  // pile's window holds hundreds of pairs and, between its islands' events,
-  // dozens of events of up to a hundred bodies each.
-  // (Entries are stamped with the pass, so that a pass costs the events it
-  // reads, not the bodies: a thousand bodies at rest have no events.)
+  // And each body's last event before the window's end, back to the longest
+  // hop before the window (its index; HeldUntil).  One pass over those
+  // events, not one per pair: a pile's window holds hundreds of pairs and,
+  // between its islands' events, dozens of events of up to a hundred bodies
+  // each.  (Entries are stamped with the pass, so that a pass costs the
+  // events it reads, not the bodies: a thousand bodies at rest have no
+  // events.)  Events at or after the window's end are passed over: a hold
+  // comes from the latest event before it, as when the window was first
+  // checked.  An edit elsewhere carries a stack's whole train of events over
+  // into the new run (and a rollback may leave later ones on record): its
+  // holds were once read from events later in the run, a pair the scratch
+  // run held was searched, and the edited run struck the stack where the
+  // scratch run did not.
   const double held_from = e0 - longest_hop_;
   ++recent_pass_;
-  for (size_t i = impacts_.size(); i-- > 0 && impacts_[i].t >= held_from;) {
+  const size_t before_end =
+      static_cast<size_t>(std::lower_bound(impacts_.begin(), impacts_.end(), e1,
+                                           [](const Impact& x, double t) { return x.t < t; }) -
+                          impacts_.begin());
+  for (size_t i = before_end; i-- > 0 && impacts_[i].t >= held_from;) {
     const Impact& x = impacts_[i];
     const int listed = static_cast<int>(x.bodies.size());
     // Its place in the event's list of bodies (`listed`: not in it).
@@ -847,7 +861,7 @@ Eigen::Vector3d CollisionMonitor::AccelAt(int body, double t, double t1) const {
 
 double CollisionMonitor::HeldUntil(int a, int b) const {
   // The latest event of either moving body (the later in order of their
-  // last events on record, back to the longest hop before; CheckEpoch).
+  // last events before the window's end, back to the longest hop; CheckEpoch).
   auto last_of = [&](int body) {
     const RecentEvents& r = recent_[static_cast<size_t>(body)];
     return r.pass == recent_pass_ ? r.last : -1L;

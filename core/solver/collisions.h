@@ -148,8 +148,8 @@ class CollisionMonitor {
   std::optional<Impact> FirstImpact(int a, int b, double start, double end);
   // The time until which the pair is held by its island's latest resting
   // event (Impact::hold), or -inf: the latest event of either body on
-  // record back to the longest hop before the current window (CheckEpoch's
-  // pass).
+  // record before the current window's end, back to the longest hop before
+  // the window (CheckEpoch's pass).
   double HeldUntil(int a, int b) const;
   void Respond(const Impact& impact);
   struct PairContact {
@@ -336,8 +336,9 @@ class CollisionMonitor {
   std::unordered_map<uint64_t, PairMemo> memo_;  // by the pair (a < b) as a << 32 | b
   // Per body, from CheckEpoch's pass over the recent events (valid where
   // `pass` is recent_pass_): its latest event in the window (from e0), its
-  // last event on record back to the longest hop before (index in impacts_,
-  // HeldUntil) and its place in that event's bodies.
+  // last event before the window's end, back to the longest hop before the
+  // window (index in impacts_, HeldUntil) and its place in that event's
+  // bodies.
   struct RecentEvents {
     long pass = -1;
     double window = 0.0;
