@@ -549,7 +549,7 @@ void CollisionMonitor::ReadVelocities(int body, double t, Side side, double* out
   sim_.Values(vars, 6, t, out, side);
 }
 
-collide::Pose CollisionMonitor::PoseAt(int b, double t) const {
+collide::Pose CollisionMonitor::PoseAt(int b, double t, Side side) const {
   const physics::BodyModel& m = sys_.bodies[b];
   collide::Pose pose;
   if (m.first_var < 0) {
@@ -561,7 +561,7 @@ collide::Pose CollisionMonitor::PoseAt(int b, double t) const {
   const int vars[7] = {v + physics::kX,  v + physics::kY,  v + physics::kZ, v + physics::kQw,
                        v + physics::kQx, v + physics::kQy, v + physics::kQz};
   double x[7];
-  sim_.Values(vars, 7, t, x);
+  sim_.Values(vars, 7, t, x, side);
   pose.p = {x[0], x[1], x[2]};
   Eigen::Quaterniond q(x[3], x[4], x[5], x[6]);
   pose.R = q.normalized().toRotationMatrix();
@@ -570,7 +570,13 @@ collide::Pose CollisionMonitor::PoseAt(int b, double t) const {
 
 collide::Motion CollisionMonitor::MotionOf(int b, double t0, double t1) const {
   collide::Motion motion;
-  motion.pose = [this, b](double t) { return PoseAt(b, t); };
+  // A search over [t0, t1] sees the bodies as they reach t1, not as an
+  // event at t1 leaves them: an edited run carries over events that lie on
+  // a window's end, which the run from scratch had not found when it
+  // searched that window (an overlap pushed apart there moved the pose).
+  motion.pose = [this, b, t1](double t) {
+    return PoseAt(b, t, t < t1 ? Side::kRight : Side::kLeft);
+  };
   const physics::BodyModel& m = sys_.bodies[b];
   if (m.first_var < 0) {
     motion.dv = motion.dw = 0.0;  // static
@@ -585,7 +591,7 @@ collide::Motion CollisionMonitor::MotionOf(int b, double t0, double t1) const {
   double rate0[10], value0[7], value1[4];
   sim_.Rates(rated, 10, t0, rate0);
   sim_.Values(rated + 3, 7, t0, value0);
-  sim_.Values(rated + 3, 4, t1, value1);
+  sim_.Values(rated + 3, 4, t1, value1, Side::kLeft);
   // Bounds on the rates of the interpolated position and orientation: the
   // exact maxima of the Hermite derivatives over the window.
   auto rate_max = [&](int k) {
@@ -776,9 +782,16 @@ bool CollisionMonitor::CheckEpoch() {
     note(x.a, listed);
     note(x.b, listed);
   }
+  // A static body's events do not move it: a pair with one is searched from
+  // its moving body's latest event.  (From the static body's latest event,
+  // a floor's pair with one cube was searched from wherever another cube's
+  // landing on the floor had last fallen in the window — a start that
+  // depends on the order the window's events were found in, so an edited
+  // run, which carries them over all at once, searched it from another
+  // start and found a landing the run from scratch had found a window late.)
   auto window_event = [&](int body) {
     const RecentEvents& r = recent_[static_cast<size_t>(body)];
-    return r.pass == recent_pass_ ? r.window : e0;
+    return r.pass == recent_pass_ && sys_.bodies[body].first_var >= 0 ? r.window : e0;
   };
   std::optional<Impact> best;
   for (auto [a, b] : window_pairs_) {
@@ -927,9 +940,9 @@ std::optional<Impact> CollisionMonitor::FirstImpact(int a, int b, double start, 
     mb.dv = 0.0;
   }
   // Every distance evaluation in the search places both bodies once.
-  ma.pose = [this, a](double t) {
+  ma.pose = [this, a, end](double t) {
     ++counters_.distance_queries;
-    return PoseAt(a, t);
+    return PoseAt(a, t, t < end ? Side::kRight : Side::kLeft);
   };
   std::optional<Impact> first;
   const double graze = kGraze * std::min(bodies_[a].radius, bodies_[b].radius);

@@ -259,7 +259,8 @@ class CollisionMonitor {
   double AccelBound(int body, double t0, double t1,
                     const Eigen::Vector3d& ref = Eigen::Vector3d::Zero()) const;
   Eigen::Vector3d AccelAt(int body, double t, double t1) const;
-  collide::Pose PoseAt(int body, double t) const;
+  // The right limit at t (an event at t has moved it), or the left one.
+  collide::Pose PoseAt(int body, double t, Side side = Side::kRight) const;
   // The body's velocity and body-frame angular velocity variables at t
   // (dx, dy, dz, w1, w2, w3).
   void ReadVelocities(int body, double t, Side side, double* out) const;
