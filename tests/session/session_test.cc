@@ -343,8 +343,8 @@ void ExpectCarriedEditMatchesScratch(const std::string& before, const std::strin
 // resting event to the next (Impact::held).  An edit elsewhere carries the
 // stack's whole train of events over into the new run, later ones included:
 // a window's holds must be read from the events before its end, as the run
-// from scratch read them, not from the stack's events a second later (which
-// held nothing there, so that a held pair was searched and struck).
+// from scratch read them, not from the stack's events later in the run
+// (which held nothing there, so that a held pair was searched and struck).
 TEST(Incremental, CarriedRestingEventsHoldTheirPairsAsInAFreshRun) {
   auto scene = [](double idle_x) {
     std::ostringstream text;
