@@ -361,7 +361,7 @@ class NewtonStep {
   // steps converge).
   bool Slipping(const Point& p, const Eigen::VectorXd& v) const {
     if (p.zone != Zone::kSlide || p.lambda[0] <= tolerance_) return false;
-    const Eigen::Vector3d y = p.ref - Relative(p, v) / p.r + p.target / p.r;
+    const Eigen::Vector3d y = Unprojected(p, Relative(p, v));
     return (y - p.lambda).norm() > std::max(p.lambda.norm(), 10.0 * tolerance_);
   }
   // The sweeps have a pressed point sliding on its rim faster than a tenth
@@ -390,10 +390,15 @@ class NewtonStep {
     if (p.b >= 0) w += p.jb * v.segment<6>(6 * p.b);
     return w;
   }
+  // y = λ_ref − (w − c)/r at relative velocity w: the impulse before its
+  // projection on the cone.
+  static Eigen::Vector3d Unprojected(const Point& p, const Eigen::Vector3d& w) {
+    return p.ref - w / p.r + p.target / p.r;
+  }
   // λ and ∂Π at relative velocity w.
   static Zone Impulse(const Point& p, const Eigen::Vector3d& w, Eigen::Vector3d& lambda,
                       Eigen::Matrix3d& dpi) {
-    const Eigen::Vector3d y = p.ref - w / p.r + p.target / p.r;
+    const Eigen::Vector3d y = Unprojected(p, w);
     if (p.mu > 0.0) return ProjectOnCone(y, p.mu, lambda, dpi);
     lambda.setZero();
     dpi.setZero();

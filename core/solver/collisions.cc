@@ -568,15 +568,17 @@ collide::Pose CollisionMonitor::PoseAt(int b, double t, Side side) const {
   return pose;
 }
 
+// A search over [t0, t1] sees the bodies as they reach t1, not as an event
+// at t1 leaves them: an edited run carries over events that lie on a
+// window's end, which the run from scratch had not found when it searched
+// that window (an overlap pushed apart there moved the pose).
+collide::Pose CollisionMonitor::SearchPose(int b, double t, double t1) const {
+  return PoseAt(b, t, t < t1 ? Side::kRight : Side::kLeft);
+}
+
 collide::Motion CollisionMonitor::MotionOf(int b, double t0, double t1) const {
   collide::Motion motion;
-  // A search over [t0, t1] sees the bodies as they reach t1, not as an
-  // event at t1 leaves them: an edited run carries over events that lie on
-  // a window's end, which the run from scratch had not found when it
-  // searched that window (an overlap pushed apart there moved the pose).
-  motion.pose = [this, b, t1](double t) {
-    return PoseAt(b, t, t < t1 ? Side::kRight : Side::kLeft);
-  };
+  motion.pose = [this, b, t1](double t) { return SearchPose(b, t, t1); };
   const physics::BodyModel& m = sys_.bodies[b];
   if (m.first_var < 0) {
     motion.dv = motion.dw = 0.0;  // static
@@ -942,7 +944,7 @@ std::optional<Impact> CollisionMonitor::FirstImpact(int a, int b, double start, 
   // Every distance evaluation in the search places both bodies once.
   ma.pose = [this, a, end](double t) {
     ++counters_.distance_queries;
-    return PoseAt(a, t, t < end ? Side::kRight : Side::kLeft);
+    return SearchPose(a, t, end);
   };
   std::optional<Impact> first;
   const double graze = kGraze * std::min(bodies_[a].radius, bodies_[b].radius);

@@ -261,6 +261,8 @@ class CollisionMonitor {
   Eigen::Vector3d AccelAt(int body, double t, double t1) const;
   // The right limit at t (an event at t has moved it), or the left one.
   collide::Pose PoseAt(int body, double t, Side side = Side::kRight) const;
+  // The pose a search up to t1 reads at t: the left limit at t1.
+  collide::Pose SearchPose(int body, double t, double t1) const;
   // The body's velocity and body-frame angular velocity variables at t
   // (dx, dy, dz, w1, w2, w3).
   void ReadVelocities(int body, double t, Side side, double* out) const;

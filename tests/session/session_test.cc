@@ -311,6 +311,34 @@ TEST(Incremental, RestingEventsCarriedOverAreRenumberedWithTheirIsland) {
   ExpectSameWaveforms(*s.run()->simulation, *scratch.run()->simulation);
 }
 
+// Unit cubes c0, c1, … of mass 1 (friction 0.5) under gravity on a static
+// floor of the given side whose top is y = 0, and a cube `idle` flying at
+// (idle_x, idle_y, 0) along z, far from them; the run lasts t1.
+struct PlacedCube {
+  double p[3], r[3];
+};
+std::string CubesAndAFlyingCube(double side, double floor_restitution,
+                                const std::vector<PlacedCube>& cubes, double restitution,
+                                double idle_x, double idle_y, double t1) {
+  std::ostringstream text;
+  text.precision(17);
+  text << "shape_set cube -desc {-sub {-box {1 1 1}}}\n"
+       << "shape_set floor -desc {-sub {-box {" << side << " 1 " << side << "}}}\n"
+       << "body floor -shape floor -static 1 -init_pos {0 -0.5 0} -restitution "
+       << floor_restitution << " -friction 0.5\n";
+  for (size_t i = 0; i < cubes.size(); ++i) {
+    const PlacedCube& c = cubes[i];
+    text << "body c" << i << " -shape cube -mass 1 -init_pos {" << c.p[0] << " " << c.p[1] << " "
+         << c.p[2] << "} -init_rot {" << c.r[0] << " " << c.r[1] << " " << c.r[2]
+         << "} -restitution " << restitution << " -friction 0.5\n"
+         << "force -body c" << i << " -y {-9.81 * c" << i << ".mass} -gravitational 1\n";
+  }
+  text << "body idle -shape cube -init_pos {" << idle_x << " " << idle_y
+       << " 0} -init_dpos {0 0 1}\n"
+       << "simulator -finish " << t1 << "\n";
+  return text.str();
+}
+
 // Runs `before`, edits it into `after` (moving a body that touches nothing,
 // so that every other body and its events are carried over), and checks the
 // edited run against a run of `after` from scratch: the same events, the
@@ -346,20 +374,9 @@ void ExpectCarriedEditMatchesScratch(const std::string& before, const std::strin
 // from scratch read them, not from the stack's events later in the run
 // (which held nothing there, so that a held pair was searched and struck).
 TEST(Incremental, CarriedRestingEventsHoldTheirPairsAsInAFreshRun) {
-  auto scene = [](double idle_x) {
-    std::ostringstream text;
-    text << "shape_set cube -desc {-sub {-box {1 1 1}}}\n"
-            "shape_set floor -desc {-sub {-box {10 1 10}}}\n"
-            "body floor -shape floor -static 1 -init_pos {0 -0.5 0} -restitution 0 "
-            "-friction 0.5\n";
-    for (int i = 0; i < 3; ++i)
-      text << "body c" << i << " -shape cube -mass 1 -init_pos {" << 0.1 * i << " "
-           << 0.52 + 1.04 * i << " 0} -restitution 0.2 -friction 0.5\n"
-           << "force -body c" << i << " -y {-9.81 * c" << i << ".mass} -gravitational 1\n";
-    text << "body idle -shape cube -init_pos {" << idle_x << " 5 0} -init_dpos {0 0 1}\n"
-         << "simulator -finish 2\n";
-    return text.str();
-  };
+  std::vector<PlacedCube> stack;
+  for (int i = 0; i < 3; ++i) stack.push_back({{0.1 * i, 0.52 + 1.04 * i, 0}, {0, 0, 0}});
+  auto scene = [&](double idle_x) { return CubesAndAFlyingCube(10, 0, stack, 0.2, idle_x, 5, 2); };
   size_t events = 0, held = 0;
   ExpectCarriedEditMatchesScratch(scene(8), scene(8.5), &events, &held);
   EXPECT_GT(held, 0u);  // the stack's events do hold pairs
@@ -373,46 +390,29 @@ TEST(Incremental, CarriedRestingEventsHoldTheirPairsAsInAFreshRun) {
 // and a floor's pair was searched from the floor's latest event in the
 // window, which depended on the order the window's events were found in.
 TEST(Incremental, APileCarriedOverMatchesARunFromScratch) {
-  struct Cube {
-    double p[3], r[3];
-  };
-  const std::vector<Cube> cubes = {{{0.0843786876887988, 1.0, 0.0318169783229551},
-                                    {-0.5348703918322664, -1.403979560352818, -1.1948569917029368}},
-                                   {{-0.05560118863556517, 2.8, -0.03611489024417863},
-                                    {-0.5435209038497093, 0.15605067325681432, 0.7256989779148761}},
-                                   {{0.006990063414279435, 4.6, -0.05050129246235571},
-                                    {1.865308285261401, -1.3943108729963436, -1.1241612083528634}},
-                                   {{-0.04109868531999997, 6.4, -0.030934060694065055},
-                                    {1.9653402002288445, -1.0936610058393152, 1.9035751053720142}},
-                                   {{-0.07763761315166487, 8.2, -0.06539918207050716},
-                                    {1.1978968384676536, 1.6798865883377436, 0.13725283338961836}},
-                                   {{-0.08068045553483105, 10.0, -0.07647553725628409},
-                                    {-0.9396855815714225, 0.873859710229568, -1.3183911449070433}},
-                                   {{0.09656229232845537, 11.8, -0.09463910916432045},
-                                    {-1.9537414892142972, 1.6610036595373883, 1.5338881776961322}},
-                                   {{-0.08371301825426, 13.6, 0.03935076368078197},
-                                    {0.7599226236263132, 1.9336342936867266, 0.618318614726773}},
-                                   {{-0.06203309379743289, 15.4, 0.06309845218038243},
-                                    {-0.5499732658663434, -1.8405423080067909, 1.984571818556561}},
-                                   {{0.03603485305788018, 17.2, 0.04706833606063876},
-                                    {0.6448384630138015, -0.6915170087150595, 0.9218643623810996}}};
+  const std::vector<PlacedCube> cubes = {
+      {{0.0843786876887988, 1.0, 0.0318169783229551},
+       {-0.5348703918322664, -1.403979560352818, -1.1948569917029368}},
+      {{-0.05560118863556517, 2.8, -0.03611489024417863},
+       {-0.5435209038497093, 0.15605067325681432, 0.7256989779148761}},
+      {{0.006990063414279435, 4.6, -0.05050129246235571},
+       {1.865308285261401, -1.3943108729963436, -1.1241612083528634}},
+      {{-0.04109868531999997, 6.4, -0.030934060694065055},
+       {1.9653402002288445, -1.0936610058393152, 1.9035751053720142}},
+      {{-0.07763761315166487, 8.2, -0.06539918207050716},
+       {1.1978968384676536, 1.6798865883377436, 0.13725283338961836}},
+      {{-0.08068045553483105, 10.0, -0.07647553725628409},
+       {-0.9396855815714225, 0.873859710229568, -1.3183911449070433}},
+      {{0.09656229232845537, 11.8, -0.09463910916432045},
+       {-1.9537414892142972, 1.6610036595373883, 1.5338881776961322}},
+      {{-0.08371301825426, 13.6, 0.03935076368078197},
+       {0.7599226236263132, 1.9336342936867266, 0.618318614726773}},
+      {{-0.06203309379743289, 15.4, 0.06309845218038243},
+       {-0.5499732658663434, -1.8405423080067909, 1.984571818556561}},
+      {{0.03603485305788018, 17.2, 0.04706833606063876},
+       {0.6448384630138015, -0.6915170087150595, 0.9218643623810996}}};
   auto scene = [&](double idle_x) {
-    std::ostringstream text;
-    text.precision(17);
-    text << "shape_set cube -desc {-sub {-box {1 1 1}}}\n"
-            "shape_set floor -desc {-sub {-box {60 1 60}}}\n"
-            "body floor -shape floor -static 1 -init_pos {0 -0.5 0} -restitution 0.5 "
-            "-friction 0.5\n";
-    for (size_t i = 0; i < cubes.size(); ++i) {
-      const Cube& c = cubes[i];
-      text << "body c" << i << " -shape cube -mass 1 -init_pos {" << c.p[0] << " " << c.p[1] << " "
-           << c.p[2] << "} -init_rot {" << c.r[0] << " " << c.r[1] << " " << c.r[2]
-           << "} -restitution 0.5 -friction 0.5\n"
-           << "force -body c" << i << " -y {-9.81 * c" << i << ".mass} -gravitational 1\n";
-    }
-    text << "body idle -shape cube -init_pos {" << idle_x << " 40 0} -init_dpos {0 0 1}\n"
-         << "simulator -finish 5\n";
-    return text.str();
+    return CubesAndAFlyingCube(60, 0.5, cubes, 0.5, idle_x, 40, 5);
   };
   size_t events = 0, held = 0;
   ExpectCarriedEditMatchesScratch(scene(30), scene(31), &events, &held);
