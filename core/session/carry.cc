@@ -125,26 +125,50 @@ void Session::CarryOverRun(const std::function<void(double)>& progress) {
     clean[c] = 1;
     sim.CopyResults(c, osim.component(oc));
   }
-  // Bodies whose every component was carried over (static bodies: when
-  // their element and shape read the same).
-  auto body_clean = [&](const physics::EquationSystem& eq, const scene::Scene& sc, int b,
-                        const solver::Simulation* s, const std::vector<char>* cl) {
-    const auto& m = eq.bodies[b];
-    if (m.first_var >= 0) {
-      for (int k = 0; k < physics::kBodySlots; ++k)
-        if (!(*cl)[s->component_of(m.first_var + k)]) return false;
-      return true;
-    }
-    (void)sc;
+  // A moving body whose every component was carried over.
+  auto body_clean = [&](int b) {
+    const auto& m = ne.bodies[b];
+    for (int k = 0; k < physics::kBodySlots; ++k)
+      if (!clean[sim.component_of(m.first_var + k)]) return false;
     return true;
   };
   std::map<std::string, int> new_body;
   for (size_t b = 0; b < ne.bodies.size(); ++b) new_body[ne.bodies[b].name] = static_cast<int>(b);
+  // What the collision monitor reads of a body besides its motion: its
+  // pieces, how it bounces and rubs, whether it is tested.  A change of
+  // any of these voids its events (its motion before the first stands).
+  auto same_piece = [](const physics::BodyPiece& x, const physics::BodyPiece& y) {
+    return x.is_sphere == y.is_sphere && x.center == y.center && x.radius == y.radius &&
+           x.hull.vertices == y.hull.vertices;
+  };
+  auto collides_same = [&](int ob, int nb) {
+    const auto &x = oe.bodies[ob], &y = ne.bodies[nb];
+    return x.is_static == y.is_static && x.collision_test == y.collision_test &&
+           x.restitution == y.restitution && x.friction == y.friction && x.artbody == y.artbody &&
+           std::equal(x.pieces.begin(), x.pieces.end(), y.pieces.begin(), y.pieces.end(),
+                      same_piece);
+  };
   auto static_same = [&](int ob, int nb) {
     const auto &x = oe.bodies[ob], &y = ne.bodies[nb];
-    return x.x0 == y.x0 && x.q0.coeffs() == y.q0.coeffs() && x.pieces.size() == y.pieces.size();
+    return x.x0 == y.x0 && x.q0.coeffs() == y.q0.coeffs() && collides_same(ob, nb);
   };
+  // The landing gap is the whole scene's (the smallest body, the
+  // tolerance): where it changed, no event stands.
+  const bool same_gap = old->collisions && run_->collisions &&
+                        old->collisions->separation() == run_->collisions->separation();
   if (old->collisions && run_->collisions) {
+    // The bodies carried over (a static one: the same body as before).
+    std::map<std::string, int> old_body;
+    for (size_t b = 0; b < oe.bodies.size(); ++b) old_body[oe.bodies[b].name] = static_cast<int>(b);
+    std::vector<char> carried(ne.bodies.size(), 0);
+    for (size_t b = 0; b < ne.bodies.size(); ++b) {
+      const int nb = static_cast<int>(b);
+      auto it = old_body.find(ne.bodies[b].name);
+      if (it == old_body.end()) continue;
+      carried[b] = same_gap &&
+                   (ne.bodies[b].first_var < 0 ? static_same(it->second, nb)
+                                               : body_clean(nb) && collides_same(it->second, nb));
+    }
     std::vector<solver::Impact> keep;
     for (const auto& imp : old->collisions->impacts()) {
       // Every body whose variables jumped at the event (both of an impact,
@@ -154,15 +178,15 @@ void Session::CarryOverRun(const std::function<void(double)>& progress) {
       for (int b : imp.bodies)
         if (std::find(involved.begin(), involved.end(), b) == involved.end()) involved.push_back(b);
       std::map<int, int> to_new;  // old index → new index, for the bodies carried over
+      std::vector<int> copied;    // new indices of the moving bodies whose results were copied
       bool all_ok = true;
       for (int ob : involved) {
         auto it = new_body.find(oe.bodies[ob].name);
-        const bool ok =
-            it != new_body.end() && (ne.bodies[it->second].first_var < 0
-                                         ? static_same(ob, it->second)
-                                         : body_clean(ne, run_->scene, it->second, &sim, &clean));
+        const bool ok = it != new_body.end() && carried[static_cast<size_t>(it->second)];
         if (ok) to_new[ob] = it->second;
         all_ok = all_ok && ok;
+        if (it != new_body.end() && ne.bodies[it->second].first_var >= 0 && body_clean(it->second))
+          copied.push_back(it->second);
       }
       if (all_ok) {
         solver::Impact moved = imp;
@@ -174,14 +198,14 @@ void Session::CarryOverRun(const std::function<void(double)>& progress) {
         keep.push_back(moved);
         continue;
       }
-      // The clean bodies' motion after the event depended on the changed ones.
-      for (const auto& [ob, nb] : to_new) {
-        if (ne.bodies[nb].first_var < 0) continue;
+      // The copied motion after the event depended on what changed (a body's
+      // own bounce, when only that changed).
+      for (int nb : copied) {
         for (int k = 0; k < physics::kBodySlots; ++k)
           sim.Truncate(sim.component_of(ne.bodies[nb].first_var + k), imp.t, /*strict=*/true);
       }
     }
-    run_->collisions->AdoptImpacts(keep);
+    run_->collisions->AdoptImpacts(keep, carried);
   }
   stats_.components = sim.component_count();
   for (char c : clean) stats_.components_reset += c ? 0 : 1;

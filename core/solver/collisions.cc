@@ -58,6 +58,14 @@ constexpr double kSearchStartTime = 1e-12, kSearchStartWindow = 1e-9;
 bool ImpactOrder(const Impact& x, const Impact& y) {
   return x.t != y.t ? x.t < y.t : std::tie(x.a, x.b) < std::tie(y.a, y.b);
 }
+
+// Every body an event involves, once: its pair and its island.
+std::vector<int> Participants(const Impact& x) {
+  std::vector<int> out = {x.a, x.b};
+  for (int b : x.bodies)
+    if (std::find(out.begin(), out.end(), b) == out.end()) out.push_back(b);
+  return out;
+}
 constexpr double kInf = std::numeric_limits<double>::infinity();
 
 // Points of a piece's support feature in direction n (world): the vertices
@@ -233,6 +241,10 @@ CollisionMonitor::CollisionMonitor(Simulation& sim, double separation)
   loose_version_.assign(n, -1);
   near_.resize(n);
   near_static_.assign(n, 0);
+  carried_until_.assign(n, -kInf);
+  carried_times_.resize(n);
+  found_times_.resize(n);
+  held_aside_.Reset(n);
   moving_.Reset(n);
   for (size_t b = 0; b < n; ++b)
     if (bodies_[b].collidable && sys_.bodies[b].first_var >= 0) moving_.Insert(static_cast<int>(b));
@@ -269,14 +281,189 @@ CollisionMonitor::CollisionMonitor(Simulation& sim, double separation)
   StartEpoch(0);
 }
 
-void CollisionMonitor::AdoptImpacts(const std::vector<Impact>& impacts) {
-  impacts_.insert(impacts_.end(), impacts.begin(), impacts.end());
-  // Their holds are looked for as far back as those of the run they come
-  // from (CheckEpoch): a longer look-back finds only holds that have ended.
-  for (const Impact& x : impacts) longest_hop_ = std::max(longest_hop_, x.hop);
-  // Stable: events of one pair at one instant (a jam, a resting island) keep
-  // the order they happened in, which SlowEvents reads.
-  std::stable_sort(impacts_.begin(), impacts_.end(), ImpactOrder);
+void CollisionMonitor::AdoptImpacts(const std::vector<Impact>& impacts,
+                                    const std::vector<char>& carried) {
+  if (idle_) {
+    // No window is checked: the events stand as they are.
+    for (const Impact& x : impacts) NoteFound(x, true);
+    impacts_.insert(impacts_.end(), impacts.begin(), impacts.end());
+    std::stable_sort(impacts_.begin(), impacts_.end(), ImpactOrder);
+    return;
+  }
+  adopted_ = true;
+  for (size_t b = 0; b < bodies_.size() && b < carried.size(); ++b) {
+    if (!carried[b]) continue;
+    double until = kInf;  // a static body: for all time
+    for (int c : bodies_[b].components) until = std::min(until, sim_.component(c).t_end());
+    carried_until_[b] = until;
+  }
+  // Latest first, so that the earliest is taken from the back; stable, so
+  // that events of one pair at one instant (a jam, a resting island) are
+  // reached in the order they happened in, which SlowEvents reads.
+  carried_ = impacts;
+  std::stable_sort(carried_.begin(), carried_.end(), ImpactOrder);
+  std::reverse(carried_.begin(), carried_.end());
+  for (const Impact& x : carried_) NoteHeldAside(x, true);
+  // The windows the carried bodies alone decide are checked now: a run in
+  // which every body was carried over takes no step, and steps are what
+  // bring windows up for checking.
+  for (size_t b = 0; b < bodies_.size(); ++b) UpdateEnd(static_cast<int>(b));
+  StartEpoch(0);
+  CheckReadyWindows();
+}
+
+void CollisionMonitor::Reopen(double t) {
+  adopted_ = true;
+  // What the windows checked so far established: every body's motion up to
+  // the first window not complete (a body cut back, up to where it was cut).
+  const double checked = epoch_ >= kEpochs ? sys_.t1 : EpochStart(epoch_);
+  for (size_t b = 0; b < bodies_.size(); ++b) {
+    double end = kInf;
+    for (int c : bodies_[b].components) end = std::min(end, sim_.component(c).t_end());
+    carried_until_[b] = std::max(carried_until_[b], std::min(end, checked));
+  }
+  // The events found after t are reached again, in time order.
+  const auto after = std::upper_bound(impacts_.begin(), impacts_.end(), t,
+                                      [](double time, const Impact& x) { return time < x.t; });
+  if (after == impacts_.end()) return;
+  for (auto it = after; it != impacts_.end(); ++it) {
+    NoteHeldAside(*it, true);
+    NoteFound(*it, false);
+  }
+  std::reverse(carried_.begin(), carried_.end());
+  carried_.insert(carried_.end(), std::make_move_iterator(after),
+                  std::make_move_iterator(impacts_.end()));
+  impacts_.erase(after, impacts_.end());
+  std::stable_sort(carried_.begin(), carried_.end(), ImpactOrder);
+  std::reverse(carried_.begin(), carried_.end());
+  // Impacts at one instant count from the latest event still found.
+  same_instant_ = 0;
+  last_impact_time_ = impacts_.empty() ? -1e300 : impacts_.back().t;
+  for (size_t i = impacts_.size(); i-- > 1 && impacts_[i - 1].t == last_impact_time_;)
+    ++same_instant_;
+}
+
+void CollisionMonitor::NoteFound(const Impact& x, bool add) {
+  for (int body : Participants(x)) {
+    auto& times = found_times_[static_cast<size_t>(body)];
+    if (add)
+      times.insert(x.t);
+    else
+      times.erase(times.find(x.t));
+  }
+}
+
+void CollisionMonitor::NoteHeldAside(const Impact& x, bool add) {
+  for (int body : Participants(x)) {
+    auto& times = carried_times_[static_cast<size_t>(body)];
+    if (add) {
+      times.insert(x.t);
+      if (!held_aside_.Contains(body)) held_aside_.Insert(body);
+    } else {
+      times.erase(times.find(x.t));
+      if (times.empty()) held_aside_.Erase(body);
+    }
+  }
+}
+
+void CollisionMonitor::ReachCarried() {
+  Impact x = std::move(carried_.back());
+  carried_.pop_back();
+  NoteHeldAside(x, false);
+  // As a response to it would have: its hop is looked back over for holds,
+  // and it counts towards impacts at one instant.
+  longest_hop_ = std::max(longest_hop_, x.hop);
+  same_instant_ = x.t == last_impact_time_ ? same_instant_ + 1 : 0;
+  last_impact_time_ = x.t;
+  NoteFound(x, true);
+  const auto pos = std::upper_bound(impacts_.begin(), impacts_.end(), x, ImpactOrder);
+  impacts_.insert(pos, std::move(x));
+}
+
+double CollisionMonitor::LandingStart(int body, double u) const {
+  double start = kInf;
+  for (int c : bodies_[static_cast<size_t>(body)].components) {
+    const Waveform& w = sim_.component(c).waveform();
+    int k = w.KeepIndex(u);
+    while (k > 0 && w.time(k) >= u) --k;
+    start = std::min(start, w.time(k));
+  }
+  return start;
+}
+
+bool CollisionMonitor::CutCarriedNearRecomputed(double e0, double e1, std::vector<char>& near) {
+  const size_t n = bodies_.size();
+  // Bodies with events held aside whose motion in the window is not yet the
+  // run from scratch's (the step landing them on their next such event
+  // starts before e1: that run has not found the event yet, and its step
+  // there went on unbroken).
+  std::vector<std::pair<int, double>> exposed;
+  for (int body : held_aside_) {
+    const size_t b = static_cast<size_t>(body);
+    if (!bodies_[b].collidable || bodies_[b].components.empty()) continue;
+    const double start = LandingStart(body, *carried_times_[b].begin());
+    if (start < e1) exposed.emplace_back(body, start);
+  }
+  if (exposed.empty()) return true;
+  std::sort(exposed.begin(), exposed.end());
+  if (near.empty()) {
+    // Bodies near a recomputed one over the window, transitively: boxes of
+    // their range in the window widened by the contact margin, which is
+    // how far apart an island's members may be.  Static bodies join no
+    // island to another.
+    near.assign(n, 0);
+    std::vector<int> ids;
+    std::vector<Eigen::Vector3d> lo(n), hi(n);
+    for (size_t b = 0; b < n; ++b) {
+      if (!bodies_[b].collidable || bodies_[b].components.empty()) continue;
+      const int body = static_cast<int>(b);
+      const bool boxed = (window_stamp_[b] == window_serial_ && box_version_[b] == version_[b]) ||
+                         broad_.Resting(body);
+      if (boxed) {
+        lo[b] = box_lo_[b];
+        hi[b] = box_hi_[b];
+      } else {
+        PositionRange(body, e0, e1, lo[b], hi[b]);
+        const Eigen::Vector3d r = Eigen::Vector3d::Constant(bodies_[b].radius + separation_);
+        lo[b] -= r;
+        hi[b] += r;
+      }
+      const Eigen::Vector3d m = Eigen::Vector3d::Constant(
+          std::max(4.0 * separation_, kMarginRelative * bodies_[b].radius));
+      lo[b] -= m;
+      hi[b] += m;
+      ids.push_back(body);
+    }
+    std::sort(ids.begin(), ids.end(), [&](int x, int y) { return lo[x].x() < lo[y].x(); });
+    std::vector<int> parent(n);
+    for (size_t b = 0; b < n; ++b) parent[b] = static_cast<int>(b);
+    auto find = [&](int x) {
+      while (parent[static_cast<size_t>(x)] != x)
+        x = parent[static_cast<size_t>(x)] = parent[static_cast<size_t>(parent[x])];
+      return x;
+    };
+    for (size_t i = 0; i < ids.size(); ++i)
+      for (size_t j = i + 1; j < ids.size() && lo[ids[j]].x() <= hi[ids[i]].x(); ++j)
+        if (collide::BoxesOverlap(lo[ids[i]], hi[ids[i]], lo[ids[j]], hi[ids[j]]))
+          parent[static_cast<size_t>(find(ids[i]))] = find(ids[j]);
+    std::vector<char> recomputed_set(n, 0);
+    for (int b : ids)
+      if (!AsCarried(b, e1)) recomputed_set[static_cast<size_t>(find(b))] = 1;
+    for (int b : ids)
+      near[static_cast<size_t>(b)] = recomputed_set[static_cast<size_t>(find(b))] ? 1 : 2;
+  }
+  bool cut = false;
+  for (auto [body, start] : exposed) {
+    if (near[static_cast<size_t>(body)] != 1) continue;
+    // Back to the landing step's start: the event and what followed from it
+    // are forgotten (AfterTruncate), and the body steps on as the run from
+    // scratch does until it finds what comes next.
+    cutting_ = true;
+    for (int c : bodies_[static_cast<size_t>(body)].components) sim_.Truncate(c, start);
+    cutting_ = false;
+    cut = true;
+  }
+  return !cut;
 }
 
 bool CollisionMonitor::Tested(int a, int b) const {
@@ -328,6 +515,10 @@ void CollisionMonitor::AfterStep(int component) {
     FollowLoose(b);
     if (old < e1 && bodies_[b].end >= e1) --pending_;
   }
+  CheckReadyWindows();
+}
+
+void CollisionMonitor::CheckReadyWindows() {
   while (pending_ == 0 && epoch_ < kEpochs) {
     if (!CheckEpoch()) break;
     StartEpoch(epoch_ + 1);
@@ -746,85 +937,103 @@ bool CollisionMonitor::CheckEpoch() {
   window_pairs_.insert(window_pairs_.end(), found.begin(), found.end());
   std::sort(window_pairs_.begin(), window_pairs_.end());
   window_pairs_.erase(std::unique(window_pairs_.begin(), window_pairs_.end()), window_pairs_.end());
-  // Each body's latest event in this window, from e0: a pair is searched
-  // from the later of its bodies'.  Only impacts inside the window count:
-  // after a rollback, later impacts of other pairs may still be on record.
-  // And each body's last event before the window's end, back to the longest
-  // hop before the window (its index; HeldUntil).  One pass over those
-  // events, not one per pair: a pile's window holds hundreds of pairs and,
-  // between its islands' events, dozens of events of up to a hundred bodies
-  // each.  (Entries are stamped with the pass, so that a pass costs the
-  // events it reads, not the bodies: a thousand bodies at rest have no
-  // events.)  Events at or after the window's end are passed over: a hold
-  // comes from the latest event before it, as when the window was first
-  // checked.  An edit elsewhere carries a stack's whole train of events over
-  // into the new run (and a rollback may leave later ones on record): its
-  // holds were once read from events later in the run, a pair the scratch
-  // run held was searched, and the edited run struck the stack where the
-  // scratch run did not.
-  const double held_from = e0 - longest_hop_;
-  ++recent_pass_;
-  const size_t before_end =
-      static_cast<size_t>(std::lower_bound(impacts_.begin(), impacts_.end(), e1,
-                                           [](const Impact& x, double t) { return x.t < t; }) -
-                          impacts_.begin());
-  for (size_t i = before_end; i-- > 0 && impacts_[i].t >= held_from;) {
-    const Impact& x = impacts_[i];
-    const int listed = static_cast<int>(x.bodies.size());
-    // Its place in the event's list of bodies (`listed`: not in it).
-    auto note = [&](int body, int place) {
-      if (body < 0 || static_cast<size_t>(body) >= n) return;
-      RecentEvents& r = recent_[static_cast<size_t>(body)];
-      if (r.pass != recent_pass_) {
-        r = RecentEvents{recent_pass_, e0, static_cast<long>(i), place};
-      }
-      if (x.t >= e0 && x.t < e1) r.window = std::max(r.window, x.t);
-    };
-    for (int k = 0; k < listed; ++k) note(x.bodies[static_cast<size_t>(k)], k);
-    note(x.a, listed);
-    note(x.b, listed);
-  }
-  // A static body's events do not move it: a pair with one is searched from
-  // its moving body's latest event.  (From the static body's latest event,
-  // a floor's pair with one cube was searched from wherever another cube's
-  // landing on the floor had last fallen in the window — a start that
-  // depends on the order the window's events were found in, so an edited
-  // run, which carries them over all at once, searched it from another
-  // start and found a landing the run from scratch had found a window late.)
-  auto window_event = [&](int body) {
-    const RecentEvents& r = recent_[static_cast<size_t>(body)];
-    return r.pass == recent_pass_ && sys_.bodies[body].first_var >= 0 ? r.window : e0;
-  };
+  // (Incremental runs: carried events are reached one by one, in time
+  // order, as found ones; CutCarriedNearRecomputed, ReachCarried.)
+  std::vector<char> near_recomputed;
   std::optional<Impact> best;
-  for (auto [a, b] : window_pairs_) {
-    if (!Tested(a, b)) continue;
-    double start = std::max(window_event(a), window_event(b));
-    // A contact its island holds is looked at again when the hop lands.
-    start = std::max(start, HeldUntil(a, b));
-    if (start >= e1) continue;
-    // Two bodies that cannot move (static or asleep) cannot collide; a
-    // sleeping body is woken only by an event, which restarts the window.
-    auto still = [&](int body) { return sys_.bodies[body].first_var < 0 || Asleep(body, start); };
-    if (still(a) && still(b)) continue;
-    // A pair whose bodies have not changed since it was last searched over
-    // the same interval gives the same answer (an event elsewhere in the
-    // window restarts the check of every pair).
-    PairMemo& memo = memo_[static_cast<uint64_t>(a) << 32 | static_cast<uint32_t>(b)];
-    std::optional<Impact> impact;
-    if (memo.valid && memo.start == start && memo.end == e1 && memo.version_a == version_[a] &&
-        memo.version_b == version_[b]) {
-      impact = memo.result;
-    } else {
-      impact = FirstImpact(a, b, start, e1);
-      memo = PairMemo{true, start, e1, version_[a], version_[b], impact};
+  for (;;) {
+    if (!carried_.empty() && !CutCarriedNearRecomputed(e0, e1, near_recomputed)) return false;
+    // Each body's latest event in this window, from e0: a pair is searched
+    // from the later of its bodies'.  Only impacts inside the window count:
+    // after a rollback, later impacts of other pairs may still be on record.
+    // And each body's last event before the window's end, back to the longest
+    // hop before the window (its index; HeldUntil).  One pass over those
+    // events, not one per pair: a pile's window holds hundreds of pairs and,
+    // between its islands' events, dozens of events of up to a hundred bodies
+    // each.  (Entries are stamped with the pass, so that a pass costs the
+    // events it reads, not the bodies: a thousand bodies at rest have no
+    // events.)  Events at or after the window's end are passed over: a hold
+    // comes from the latest event before it, as when the window was first
+    // checked.  An edit elsewhere carries a stack's whole train of events over
+    // into the new run (and a rollback may leave later ones on record): its
+    // holds were once read from events later in the run, a pair the scratch
+    // run held was searched, and the edited run struck the stack where the
+    // scratch run did not.
+    const double held_from = e0 - longest_hop_;
+    ++recent_pass_;
+    const size_t before_end =
+        static_cast<size_t>(std::lower_bound(impacts_.begin(), impacts_.end(), e1,
+                                             [](const Impact& x, double t) { return x.t < t; }) -
+                            impacts_.begin());
+    for (size_t i = before_end; i-- > 0 && impacts_[i].t >= held_from;) {
+      const Impact& x = impacts_[i];
+      const int listed = static_cast<int>(x.bodies.size());
+      // Its place in the event's list of bodies (`listed`: not in it).
+      auto note = [&](int body, int place) {
+        if (body < 0 || static_cast<size_t>(body) >= n) return;
+        RecentEvents& r = recent_[static_cast<size_t>(body)];
+        if (r.pass != recent_pass_) {
+          r = RecentEvents{recent_pass_, e0, static_cast<long>(i), place};
+        }
+        if (x.t >= e0 && x.t < e1) r.window = std::max(r.window, x.t);
+      };
+      for (int k = 0; k < listed; ++k) note(x.bodies[static_cast<size_t>(k)], k);
+      note(x.a, listed);
+      note(x.b, listed);
     }
-    // Windows are half-open, [e0, e1): an impact exactly at e1 belongs to
-    // the next window, which finds it at its start.  Answered here, its jumps
-    // would not show yet — the bodies' components end at e1 and apply them
-    // only when they next step — so this window would find it again, and
-    // again.  At the run's very end (e1 = t1) it changes nothing the run
-    // computes (velocities after t1 are never used) and is not answered.
-    if (impact && impact->t < e1 && (!best || impact->t < best->t)) best = impact;
+    // A static body's events do not move it: a pair with one is searched from
+    // its moving body's latest event.  (From the static body's latest event,
+    // a floor's pair with one cube was searched from wherever another cube's
+    // landing on the floor had last fallen in the window — a start that
+    // depends on the order the window's events were found in, so an edited
+    // run, which carries them over all at once, searched it from another
+    // start and found a landing the run from scratch had found a window late.)
+    auto window_event = [&](int body) {
+      const RecentEvents& r = recent_[static_cast<size_t>(body)];
+      return r.pass == recent_pass_ && sys_.bodies[body].first_var >= 0 ? r.window : e0;
+    };
+    for (auto [a, b] : window_pairs_) {
+      if (!Tested(a, b)) continue;
+      // Two bodies carried over: the earlier run searched them with the same
+      // motion, and their events over the window are the carried ones.
+      if (adopted_ && AsCarried(a, e1) && AsCarried(b, e1)) continue;
+      double start = std::max(window_event(a), window_event(b));
+      // A contact its island holds is looked at again when the hop lands.
+      start = std::max(start, HeldUntil(a, b));
+      if (start >= e1) continue;
+      // Two bodies that cannot move (static or asleep) cannot collide; a
+      // sleeping body is woken only by an event, which restarts the window.
+      auto still = [&](int body) { return sys_.bodies[body].first_var < 0 || Asleep(body, start); };
+      if (still(a) && still(b)) continue;
+      // A pair whose bodies have not changed since it was last searched over
+      // the same interval gives the same answer (an event elsewhere in the
+      // window restarts the check of every pair).
+      PairMemo& memo = memo_[static_cast<uint64_t>(a) << 32 | static_cast<uint32_t>(b)];
+      std::optional<Impact> impact;
+      if (memo.valid && memo.start == start && memo.end == e1 && memo.version_a == version_[a] &&
+          memo.version_b == version_[b]) {
+        impact = memo.result;
+      } else {
+        impact = FirstImpact(a, b, start, e1);
+        memo = PairMemo{true, start, e1, version_[a], version_[b], impact};
+      }
+      // Windows are half-open, [e0, e1): an impact exactly at e1 belongs to
+      // the next window, which finds it at its start.  Answered here, its jumps
+      // would not show yet — the bodies' components end at e1 and apply them
+      // only when they next step — so this window would find it again, and
+      // again.  At the run's very end (e1 = t1) it changes nothing the run
+      // computes (velocities after t1 are never used) and is not answered.
+      if (impact && impact->t < e1 && (!best || impact->t < best->t)) best = impact;
+    }
+    // A carried event before every impact found (or tied with it, in a pair
+    // before its pair) is reached first.
+    if (!carried_.empty() && carried_.back().t < e1 &&
+        (!best || !ImpactOrder(*best, carried_.back()))) {
+      ReachCarried();
+      best.reset();
+      continue;
+    }
+    break;
   }
   if (!best) return true;
   // Impacts that keep coming at one instant (a body jammed between others,
@@ -1389,6 +1598,7 @@ void CollisionMonitor::Respond(const Impact& impact) {
     }
   }
   ++counters_.impacts;
+  NoteFound(recorded, true);
   auto pos = std::upper_bound(impacts_.begin(), impacts_.end(), recorded, ImpactOrder);
   impacts_.insert(pos, recorded);
   for (int s = 0; s < 2; ++s) {
@@ -1704,6 +1914,7 @@ void CollisionMonitor::RespondResting(const Impact& impact) {
   ++counters_.impacts;
   ++counters_.resting_events;
   counters_.contacts_solved += static_cast<long>(contacts.size());
+  NoteFound(recorded, true);
   auto pos = std::upper_bound(impacts_.begin(), impacts_.end(), recorded, ImpactOrder);
   impacts_.insert(pos, recorded);
   for (int body : members) {
@@ -1724,16 +1935,21 @@ void CollisionMonitor::RespondResting(const Impact& impact) {
 }
 
 const Impact* CollisionMonitor::PreviousResting(int body, double t) const {
-  // Impacts in time order: from the last one up to t back, the first that
-  // involves the body.  One at t itself means the body's velocities were
-  // solved at this instant already (an island struck again): they hold
-  // that solution, and a guess would add it a second time.  Bounded, so
-  // that a body with no recent event costs a bounded scan (an old event is
-  // too far back to start from anyway).
-  constexpr int kLookBack = 256;
-  auto it = std::upper_bound(impacts_.begin(), impacts_.end(), t,
+  // The body's latest event at or before t.  One at t itself means the
+  // body's velocities were solved at this instant already (an island struck
+  // again): they hold that solution, and a guess would add it a second time.
+  // Found through the body's own event times, not by a bounded scan of
+  // everyone's: how many events other bodies had since must not decide
+  // whether an island starts from its previous solve (an edit elsewhere in a
+  // pile changed the count, and with it the solve).
+  const auto& times = found_times_[static_cast<size_t>(body)];
+  auto latest = times.upper_bound(t);
+  if (latest == times.begin()) return nullptr;
+  --latest;
+  const double when = *latest;
+  auto to = std::upper_bound(impacts_.begin(), impacts_.end(), when,
                              [](double time, const Impact& x) { return time < x.t; });
-  for (int k = 0; k < kLookBack && it != impacts_.begin(); ++k) {
+  for (auto it = to; it != impacts_.begin() && std::prev(it)->t == when;) {
     --it;
     if (Involves(*it, body)) return it->resting && it->t < t ? &*it : nullptr;
   }
@@ -1799,6 +2015,7 @@ void CollisionMonitor::OnTruncate(int component, double kept) {
   for (int b : bodies_of_component_[component]) {
     truncated_.push_back({b, kept});
     ++version_[static_cast<size_t>(b)];
+    carried_until_[static_cast<size_t>(b)] = std::min(carried_until_[static_cast<size_t>(b)], kept);
     if (broad_.Resting(b)) Unrest(b);
   }
 }
@@ -1821,6 +2038,12 @@ void CollisionMonitor::AfterTruncate() {
       // since that sample again after each impact made the checks grow with
       // impacts × span × pairs.
       earliest = std::min(earliest, limit);
+      // Every body's jumps at a voided event are void; the others' data after
+      // it must be recomputed.
+      auto void_event = [&](const Impact& imp) {
+        for (int body : imp.bodies.empty() ? std::vector<int>{imp.a, imp.b} : imp.bodies)
+          for (int c : bodies_[body].components) sim_.Truncate(c, imp.t, /*strict=*/true);
+      };
       // impacts_ is sorted by time: only its tail after `limit` can go.
       auto after = std::upper_bound(impacts_.begin(), impacts_.end(), limit,
                                     [](double t, const Impact& x) { return t < x.t; });
@@ -1828,11 +2051,20 @@ void CollisionMonitor::AfterTruncate() {
         if (Involves(impacts_[i], b)) {
           const Impact imp = std::move(impacts_[i]);
           impacts_.erase(impacts_.begin() + static_cast<long>(i));
+          NoteFound(imp, false);
           ++counters_.invalidated_impacts;
-          // Both bodies' jumps at the impact are void; the partner's data
-          // after it must be recomputed.
-          for (int body : imp.bodies.empty() ? std::vector<int>{imp.a, imp.b} : imp.bodies)
-            for (int c : bodies_[body].components) sim_.Truncate(c, imp.t, /*strict=*/true);
+          void_event(imp);
+          continue;
+        }
+        ++i;
+      }
+      // Carried events not reached yet (latest first): its head after `limit`.
+      for (size_t i = 0; i < carried_.size() && carried_[i].t > limit;) {
+        if (Involves(carried_[i], b)) {
+          const Impact imp = std::move(carried_[i]);
+          carried_.erase(carried_.begin() + static_cast<long>(i));
+          NoteHeldAside(imp, false);
+          void_event(imp);
           continue;
         }
         ++i;
@@ -1840,6 +2072,12 @@ void CollisionMonitor::AfterTruncate() {
     }
   }
   in_after_truncate_ = false;
+  if (std::isfinite(earliest) && !responding_ && !cutting_) Reopen(earliest);
+  // A cut of CutCarriedNearRecomputed changes motion that no check has read
+  // (the body was not near a recomputed one in the windows before, or it
+  // would have been cut there): the current window is checked again, not
+  // the windows since the cut.
+  if (cutting_) earliest = std::max(earliest, EpochStart(epoch_));
   if (std::isfinite(earliest) && (earliest < EpochStart(epoch_ + 1) || epoch_ >= kEpochs)) {
     const long k = static_cast<long>(std::floor((earliest - sys_.t0) / epoch_length_));
     StartEpoch(std::clamp(std::min(k, epoch_), 0L, kEpochs));

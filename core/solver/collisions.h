@@ -120,9 +120,12 @@ class CollisionMonitor {
   const std::vector<scene::Diagnostic>& warnings() const { return warnings_; }
   // Gap at which bodies land before an impact.
   double separation() const { return separation_; }
-  // Takes over impacts of an earlier run between bodies whose results were
-  // carried over (indices already mapped to this run's bodies).
-  void AdoptImpacts(const std::vector<Impact>& impacts);
+  // Takes over the events of an earlier run between bodies whose results
+  // were carried over (indices already mapped to this run's bodies);
+  // `carried` marks those bodies, by this run's index (a static one: the
+  // same body as before).  Each event counts as found only when the window
+  // check reaches it in time order (see "Incremental runs" below).
+  void AdoptImpacts(const std::vector<Impact>& impacts, const std::vector<char>& carried);
   // Whether bodies a and b are ever tested against each other.
   bool Tested(int a, int b) const;
 
@@ -143,6 +146,9 @@ class CollisionMonitor {
   void AfterTruncate();
   void UpdateEnd(int body);
   void StartEpoch(long epoch);
+  // Checks windows while every collidable body is computed past the end of
+  // the current one.
+  void CheckReadyWindows();
   // Checks the current epoch; returns true when it is complete.
   bool CheckEpoch();
   std::optional<Impact> FirstImpact(int a, int b, double start, double end);
@@ -270,6 +276,32 @@ class CollisionMonitor {
   template <typename F>
   void ForEachSegment(int var, double t0, double t1, F&& f) const;
   double EpochStart(long k) const;
+  // Whether the body's motion over the window ending at e1 is the one
+  // checked before (carried over, or checked before a cut back) and not cut
+  // back before e1 since.
+  bool AsCarried(int body, double e1) const {
+    return carried_until_[static_cast<size_t>(body)] >= e1;
+  }
+  // After a cut back to t that no response made (an edit, or
+  // CutCarriedNearRecomputed): the events found after t are held aside to be
+  // reached again in time order, and the bodies' motion over the windows
+  // checked so far counts as checked (AsCarried).
+  void Reopen(double t);
+  // Records the event as found (in impacts_; add), or no longer.
+  void NoteFound(const Impact& x, bool add);
+  // Records the event as held aside in carried_ (add), or no longer.
+  void NoteHeldAside(const Impact& x, bool add);
+  // Takes the earliest carried event as found (carried_.back()).
+  void ReachCarried();
+  // The time the step that lands the body's components on its event at u
+  // starts from (the last sample before u; the earliest of its components).
+  double LandingStart(int body, double u) const;
+  // Cuts back the bodies near recomputed ones (or recomputed themselves)
+  // whose motion in the window [e0, e1] is not the one a run from scratch
+  // has at this point (the step landing them on their next event held
+  // aside starts before e1); true when there were none.  `near` caches,
+  // for the window's check, which bodies are near recomputed ones.
+  bool CutCarriedNearRecomputed(double e0, double e1, std::vector<char>& near);
 
   Simulation& sim_;
   const physics::EquationSystem& sys_;
@@ -325,6 +357,31 @@ class CollisionMonitor {
   std::vector<std::vector<int>> bodies_of_component_;
   std::set<std::pair<int, int>> excluded_;    // directly linked parts of one artbody
   std::vector<Impact> impacts_;               // sorted by time
+  std::vector<std::multiset<double>> found_times_;  // per body: its events' times in impacts_
+  // Re-simulation after an edit (or any cut back that no response made).
+  // The run from scratch finds its events one by one, in time order, each
+  // from the motion as it is at that point: no event later than the window
+  // being checked is on record, and a body's motion after its latest event
+  // goes on unbroken.  An edited run starts with the events of the bodies it
+  // carries over (AdoptImpacts), and a cut back to t keeps those found after
+  // t that do not involve the bodies cut (Reopen).  Such events are held
+  // aside in carried_ (latest first) until the window check reaches them:
+  // one is taken as found (ReachCarried) when no search finds an earlier
+  // impact, which would void it first.  A pair of two bodies whose motion
+  // over the window is the one checked before (AsCarried) is not searched:
+  // it was searched with the same motion, and its events are those held.
+  // A body with an event held aside has the motion of a run that found it,
+  // which differs from the run from scratch's where the step landing it
+  // there starts before the window's end; near a recomputed body (where it
+  // would be searched, or join an island) it is cut back to that step's
+  // start first (CutCarriedNearRecomputed).  The run from scratch never
+  // cuts back before the window it checks, so none of this happens there.
+  bool adopted_ = false;
+  bool cutting_ = false;  // inside CutCarriedNearRecomputed's truncations
+  std::vector<Impact> carried_;
+  std::vector<std::multiset<double>> carried_times_;  // per body: its events in carried_
+  IndexedSet held_aside_;                             // the bodies with events in carried_
+  std::vector<double> carried_until_;  // per body: motion checked before up to here (AsCarried)
   std::set<std::pair<int, int>> overlap_warned_;
   std::vector<std::pair<int, double>> truncated_;  // (body, kept) awaiting AfterTruncate
   std::vector<scene::Diagnostic> warnings_;
