@@ -12,6 +12,8 @@
 
 #include <Eigen/Geometry>
 #include <cmath>
+#include <cstring>
+#include <map>
 #include <random>
 #include <sstream>
 
@@ -21,6 +23,9 @@
 #include "core/physics/equations.h"
 #include "core/pipeline/pipeline.h"
 #include "core/solver/collisions.h"
+#ifdef ASGARD_BENCH_SESSION
+#include "core/session/session.h"
+#endif
 
 namespace asgard::bench {
 
@@ -194,6 +199,99 @@ std::vector<ContactScene> ContactScenes() {
           BallsInBox(1000, 60.0, 14)};
 }
 
+// Edits of contact scenes through the editing model (issue 14: incremental
+// re-simulation stays bit-exact): each case is a scene before and after one
+// edit, from one that reaches nothing else to one that reaches every body.
+struct EditCase {
+  std::string name, what, before, after;
+};
+
+std::vector<EditCase> EditCases() {
+  std::vector<EditCase> cases;
+  const ContactScene pile = Pile(30, 5.0, 14);
+  auto with_cube = [&](double x, double y) {
+    ContactScene s = pile;
+    ContactBody b;
+    b.p = {x, y, 0.1};
+    b.rot = {0.3, 0.2, 0.1};
+    s.bodies.push_back(b);
+    return SceneText(s);
+  };
+  cases.push_back({"pile30_far_cube", "a cube falling far from a pile of 30 moved 1 sideways",
+                   with_cube(20, 40), with_cube(21, 40)});
+  cases.push_back({"pile30_dropped_cube", "a cube dropped onto a pile of 30 from 24 instead of 25",
+                   with_cube(0.1, 25), with_cube(0.1, 24)});
+  ContactScene moved = pile;
+  moved.bodies[5].p.x() += 0.05;
+  cases.push_back({"pile30_cube_moved", "a cube of a pile of 30 placed 0.05 aside", SceneText(pile),
+                   SceneText(moved)});
+  const ContactScene balls = BallsInBox(100, 10.0, 14);
+  ContactScene faster = balls;
+  faster.bodies[5].v *= 1.1;
+  cases.push_back({"balls100_velocity", "a ball of 100 in a box 10% faster, 10 s", SceneText(balls),
+                   SceneText(faster)});
+  return cases;
+}
+
+void RunContactEdits(const Config& cfg) {
+  Csv csv(cfg.out_dir + "/contact_edits.csv",
+          {"case", "what", "status", "full_s", "incremental_s", "full_steps", "incremental_steps",
+           "events", "equal", "error"});
+  for (const EditCase& c : EditCases()) {
+    std::map<std::string, std::string> row = {{"case", c.name}, {"what", c.what}};
+#ifndef ASGARD_BENCH_SESSION
+    row["status"] = "not_measurable";
+    row["error"] = "core/session (the editing model) is not built";
+#else
+    auto iso = RunIsolated(
+        [&]() -> std::string {
+          session::Session s(c.before);
+          if (!s.Simulate()) return "error the run before the edit failed";
+          s.UpdateText(c.after);
+          if (!s.Simulate()) return "error the incremental run failed";
+          session::Session scratch(c.after);
+          if (!scratch.Simulate()) return "error the run from scratch failed";
+          // Bit for bit: the events (times and bodies) and every variable at
+          // every 30 Hz frame.
+          const auto& got = s.run()->collisions->impacts();
+          const auto& want = scratch.run()->collisions->impacts();
+          bool equal = got.size() == want.size();
+          for (size_t i = 0; equal && i < got.size(); ++i)
+            equal = std::memcmp(&got[i].t, &want[i].t, sizeof(double)) == 0 &&
+                    got[i].bodies == want[i].bodies;
+          const auto& eq = *scratch.run()->equations;
+          for (double t : pipeline::FrameTimes(eq.t0, eq.t1, 30.0))
+            for (size_t v = 0; equal && v < eq.variables.size(); ++v) {
+              const double a = s.run()->simulation->Value(static_cast<int>(v), t);
+              const double b = scratch.run()->simulation->Value(static_cast<int>(v), t);
+              equal = std::memcmp(&a, &b, sizeof a) == 0;
+            }
+          return Pack({scratch.last_stats().seconds, s.last_stats().seconds,
+                       static_cast<double>(scratch.last_stats().steps),
+                       static_cast<double>(s.last_stats().steps), static_cast<double>(want.size()),
+                       equal ? 1.0 : 0.0});
+        },
+        cfg.timeout * 3);
+    if (iso.status != "ok" || iso.output.rfind("error", 0) == 0) {
+      row["status"] = iso.status == "ok" ? "failed" : iso.status;
+      row["error"] = iso.output;
+    } else {
+      const auto v = Unpack(iso.output);
+      row["status"] = "ok";
+      row["full_s"] = Num(v[0]);
+      row["incremental_s"] = Num(v[1]);
+      row["full_steps"] = Num(v[2]);
+      row["incremental_steps"] = Num(v[3]);
+      row["events"] = Num(v[4]);
+      row["equal"] = v[5] != 0 ? "yes" : "no";
+      Log("contact edit %s: full %s s, incremental %s s, %s", c.name.c_str(), Num(v[0]).c_str(),
+          Num(v[1]).c_str(), v[5] != 0 ? "bit-equal" : "DIFFERENT");
+    }
+#endif
+    csv.Row(row);
+  }
+}
+
 }  // namespace
 
 double StepAndMeasure(
@@ -296,6 +394,7 @@ void RunContact(const Config& cfg) {
     row("mujoco h=1/240", RunMujocoContact(s, 1.0 / 240));
 #endif
   }
+  RunContactEdits(cfg);
 }
 
 }  // namespace asgard::bench

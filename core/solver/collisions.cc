@@ -245,6 +245,9 @@ CollisionMonitor::CollisionMonitor(Simulation& sim, double separation)
   carried_times_.resize(n);
   found_times_.resize(n);
   held_aside_.Reset(n);
+  for (size_t b = 0; b < n; ++b)
+    if (bodies_[b].collidable && sys_.bodies[b].first_var >= 0)
+      moving_all_.push_back(static_cast<int>(b));
   moving_.Reset(n);
   for (size_t b = 0; b < n; ++b)
     if (bodies_[b].collidable && sys_.bodies[b].first_var >= 0) moving_.Insert(static_cast<int>(b));
@@ -391,79 +394,80 @@ double CollisionMonitor::LandingStart(int body, double u) const {
   return start;
 }
 
-bool CollisionMonitor::CutCarriedNearRecomputed(double e0, double e1, std::vector<char>& near) {
-  const size_t n = bodies_.size();
-  // Bodies with events held aside whose motion in the window is not yet the
-  // run from scratch's (the step landing them on their next such event
-  // starts before e1: that run has not found the event yet, and its step
-  // there went on unbroken).
-  std::vector<std::pair<int, double>> exposed;
-  for (int body : held_aside_) {
-    const size_t b = static_cast<size_t>(body);
-    if (!bodies_[b].collidable || bodies_[b].components.empty()) continue;
-    const double start = LandingStart(body, *carried_times_[b].begin());
-    if (start < e1) exposed.emplace_back(body, start);
-  }
-  if (exposed.empty()) return true;
-  std::sort(exposed.begin(), exposed.end());
-  if (near.empty()) {
-    // Bodies near a recomputed one over the window, transitively: boxes of
-    // their range in the window widened by the contact margin, which is
-    // how far apart an island's members may be.  Static bodies join no
-    // island to another.
-    near.assign(n, 0);
-    std::vector<int> ids;
-    std::vector<Eigen::Vector3d> lo(n), hi(n);
-    for (size_t b = 0; b < n; ++b) {
-      if (!bodies_[b].collidable || bodies_[b].components.empty()) continue;
-      const int body = static_cast<int>(b);
-      const bool boxed = (window_stamp_[b] == window_serial_ && box_version_[b] == version_[b]) ||
-                         broad_.Resting(body);
-      if (boxed) {
-        lo[b] = box_lo_[b];
-        hi[b] = box_hi_[b];
-      } else {
-        PositionRange(body, e0, e1, lo[b], hi[b]);
-        const Eigen::Vector3d r = Eigen::Vector3d::Constant(bodies_[b].radius + separation_);
-        lo[b] -= r;
-        hi[b] += r;
-      }
-      const Eigen::Vector3d m = Eigen::Vector3d::Constant(
-          std::max(4.0 * separation_, kMarginRelative * bodies_[b].radius));
-      lo[b] -= m;
-      hi[b] += m;
-      ids.push_back(body);
-    }
-    std::sort(ids.begin(), ids.end(), [&](int x, int y) { return lo[x].x() < lo[y].x(); });
-    std::vector<int> parent(n);
-    for (size_t b = 0; b < n; ++b) parent[b] = static_cast<int>(b);
-    auto find = [&](int x) {
-      while (parent[static_cast<size_t>(x)] != x)
-        x = parent[static_cast<size_t>(x)] = parent[static_cast<size_t>(parent[x])];
-      return x;
-    };
-    for (size_t i = 0; i < ids.size(); ++i)
-      for (size_t j = i + 1; j < ids.size() && lo[ids[j]].x() <= hi[ids[i]].x(); ++j)
-        if (collide::BoxesOverlap(lo[ids[i]], hi[ids[i]], lo[ids[j]], hi[ids[j]]))
-          parent[static_cast<size_t>(find(ids[i]))] = find(ids[j]);
-    std::vector<char> recomputed_set(n, 0);
-    for (int b : ids)
-      if (!AsCarried(b, e1)) recomputed_set[static_cast<size_t>(find(b))] = 1;
-    for (int b : ids)
-      near[static_cast<size_t>(b)] = recomputed_set[static_cast<size_t>(find(b))] ? 1 : 2;
-  }
+bool CollisionMonitor::Exposed(int body, double e1) const {
+  // The run from scratch has not found the body's next event held aside
+  // yet, and its step there went on unbroken: where the step landing the
+  // body on that event starts before e1, the body's motion in the window is
+  // not the one that run has at this point.
+  if (!held_aside_.Contains(body)) return false;
+  return LandingStart(body, *carried_times_[static_cast<size_t>(body)].begin()) < e1;
+}
+
+bool CollisionMonitor::CutExposed(std::vector<int> bodies, double e1) {
+  std::sort(bodies.begin(), bodies.end());
+  bodies.erase(std::unique(bodies.begin(), bodies.end()), bodies.end());
   bool cut = false;
-  for (auto [body, start] : exposed) {
-    if (near[static_cast<size_t>(body)] != 1) continue;
+  for (int body : bodies) {
+    if (bodies_[static_cast<size_t>(body)].components.empty() || !Exposed(body, e1)) continue;
     // Back to the landing step's start: the event and what followed from it
     // are forgotten (AfterTruncate), and the body steps on as the run from
     // scratch does until it finds what comes next.
+    const double start = LandingStart(body, *carried_times_[static_cast<size_t>(body)].begin());
     cutting_ = true;
     for (int c : bodies_[static_cast<size_t>(body)].components) sim_.Truncate(c, start);
     cutting_ = false;
     cut = true;
   }
-  return !cut;
+  return cut;
+}
+
+std::vector<int> CollisionMonitor::IslandReach(int a, int b, double e0, double e1) {
+  // Every body an island grown from a and b in the window could take in:
+  // boxes of the bodies' range over the window, widened by the contact
+  // margin (how far apart an island's members may be), overlapping in a
+  // chain from a or b through moving bodies.
+  const size_t n = bodies_.size();
+  std::vector<Eigen::Vector3d> lo(n), hi(n);
+  std::vector<char> boxed(n, 0), in(n, 0);
+  auto box = [&](int body) {
+    const size_t i = static_cast<size_t>(body);
+    if (boxed[i]) return;
+    boxed[i] = 1;
+    if ((window_stamp_[i] == window_serial_ && box_version_[i] == version_[i]) ||
+        broad_.Resting(body)) {
+      lo[i] = box_lo_[i];
+      hi[i] = box_hi_[i];
+    } else {
+      PositionRange(body, e0, e1, lo[i], hi[i]);
+      const Eigen::Vector3d r = Eigen::Vector3d::Constant(bodies_[i].radius + separation_);
+      lo[i] -= r;
+      hi[i] += r;
+    }
+    const Eigen::Vector3d m =
+        Eigen::Vector3d::Constant(std::max(4.0 * separation_, kMarginRelative * bodies_[i].radius));
+    lo[i] -= m;
+    hi[i] += m;
+  };
+  std::vector<int> reach;
+  for (int body : {a, b})
+    if (!bodies_[static_cast<size_t>(body)].components.empty() && !in[static_cast<size_t>(body)]) {
+      in[static_cast<size_t>(body)] = 1;
+      reach.push_back(body);
+    }
+  for (size_t q = 0; q < reach.size(); ++q) {
+    const int x = reach[q];
+    box(x);
+    for (int y : moving_all_) {
+      if (in[static_cast<size_t>(y)]) continue;
+      box(y);
+      if (!collide::BoxesOverlap(lo[static_cast<size_t>(x)], hi[static_cast<size_t>(x)],
+                                 lo[static_cast<size_t>(y)], hi[static_cast<size_t>(y)]))
+        continue;
+      in[static_cast<size_t>(y)] = 1;
+      reach.push_back(y);
+    }
+  }
+  return reach;
 }
 
 bool CollisionMonitor::Tested(int a, int b) const {
@@ -937,12 +941,21 @@ bool CollisionMonitor::CheckEpoch() {
   window_pairs_.insert(window_pairs_.end(), found.begin(), found.end());
   std::sort(window_pairs_.begin(), window_pairs_.end());
   window_pairs_.erase(std::unique(window_pairs_.begin(), window_pairs_.end()), window_pairs_.end());
-  // (Incremental runs: carried events are reached one by one, in time
-  // order, as found ones; CutCarriedNearRecomputed, ReachCarried.)
-  std::vector<char> near_recomputed;
+  // (Incremental runs: events held aside are reached one by one, in time
+  // order, as found ones; ReachCarried.)
   std::optional<Impact> best;
   for (;;) {
-    if (!carried_.empty() && !CutCarriedNearRecomputed(e0, e1, near_recomputed)) return false;
+    // A body that is searched against a recomputed one must have the motion
+    // the run from scratch has at this point (Exposed).
+    if (!held_aside_.empty()) {
+      std::vector<int> searched;
+      for (auto [a, b] : window_pairs_)
+        if (Tested(a, b) && !(AsCarried(a, e1) && AsCarried(b, e1))) {
+          searched.push_back(a);
+          searched.push_back(b);
+        }
+      if (CutExposed(std::move(searched), e1)) return false;
+    }
     // Each body's latest event in this window, from e0: a pair is searched
     // from the later of its bodies'.  Only impacts inside the window count:
     // after a rollback, later impacts of other pairs may still be on record.
@@ -1036,6 +1049,8 @@ bool CollisionMonitor::CheckEpoch() {
     break;
   }
   if (!best) return true;
+  // So must every body the response's island may take in.
+  if (!held_aside_.empty() && CutExposed(IslandReach(best->a, best->b, e0, e1), e1)) return false;
   // Impacts that keep coming at one instant (a body jammed between others,
   // or positions too loose for the contacts to separate): past kJamEvents they are
   // made perfectly inelastic, past 1000 the run stops with a report.
@@ -2044,39 +2059,41 @@ void CollisionMonitor::AfterTruncate() {
         for (int body : imp.bodies.empty() ? std::vector<int>{imp.a, imp.b} : imp.bodies)
           for (int c : bodies_[body].components) sim_.Truncate(c, imp.t, /*strict=*/true);
       };
-      // impacts_ is sorted by time: only its tail after `limit` can go.
-      auto after = std::upper_bound(impacts_.begin(), impacts_.end(), limit,
-                                    [](double t, const Impact& x) { return t < x.t; });
-      for (size_t i = static_cast<size_t>(after - impacts_.begin()); i < impacts_.size();) {
-        if (Involves(impacts_[i], b)) {
-          const Impact imp = std::move(impacts_[i]);
-          impacts_.erase(impacts_.begin() + static_cast<long>(i));
-          NoteFound(imp, false);
-          ++counters_.invalidated_impacts;
-          void_event(imp);
-          continue;
-        }
-        ++i;
+      // Its events found after `limit`, through its own event times, in
+      // time order (impacts_ is sorted by time).
+      const auto& found = found_times_[static_cast<size_t>(b)];
+      for (auto next = found.upper_bound(limit); next != found.end();
+           next = found.upper_bound(limit)) {
+        auto at = std::lower_bound(impacts_.begin(), impacts_.end(), *next,
+                                   [](const Impact& x, double t) { return x.t < t; });
+        while (!Involves(*at, b)) ++at;
+        const Impact imp = std::move(*at);
+        impacts_.erase(at);
+        NoteFound(imp, false);
+        ++counters_.invalidated_impacts;
+        void_event(imp);
       }
-      // Carried events not reached yet (latest first): its head after `limit`.
-      for (size_t i = 0; i < carried_.size() && carried_[i].t > limit;) {
-        if (Involves(carried_[i], b)) {
-          const Impact imp = std::move(carried_[i]);
-          carried_.erase(carried_.begin() + static_cast<long>(i));
-          NoteHeldAside(imp, false);
-          void_event(imp);
-          continue;
-        }
-        ++i;
+      // Its events held aside after `limit`, found through its own event
+      // times (carried_ is latest first).
+      const auto& held = carried_times_[static_cast<size_t>(b)];
+      while (!held.empty() && *held.rbegin() > limit) {
+        const double when = *held.rbegin();
+        auto at = std::lower_bound(carried_.begin(), carried_.end(), when,
+                                   [](const Impact& x, double t) { return x.t > t; });
+        while (!Involves(*at, b)) ++at;
+        const Impact imp = std::move(*at);
+        carried_.erase(at);
+        NoteHeldAside(imp, false);
+        void_event(imp);
       }
     }
   }
   in_after_truncate_ = false;
   if (std::isfinite(earliest) && !responding_ && !cutting_) Reopen(earliest);
-  // A cut of CutCarriedNearRecomputed changes motion that no check has read
-  // (the body was not near a recomputed one in the windows before, or it
-  // would have been cut there): the current window is checked again, not
-  // the windows since the cut.
+  // A cut of CutExposed changes motion that no check has read (the body
+  // was not searched against a recomputed one, nor in reach of a response,
+  // in the windows before, or it would have been cut there): the current
+  // window is checked again, not the windows since the cut.
   if (cutting_) earliest = std::max(earliest, EpochStart(epoch_));
   if (std::isfinite(earliest) && (earliest < EpochStart(epoch_ + 1) || epoch_ >= kEpochs)) {
     const long k = static_cast<long>(std::floor((earliest - sys_.t0) / epoch_length_));

@@ -282,8 +282,8 @@ class CollisionMonitor {
   bool AsCarried(int body, double e1) const {
     return carried_until_[static_cast<size_t>(body)] >= e1;
   }
-  // After a cut back to t that no response made (an edit, or
-  // CutCarriedNearRecomputed): the events found after t are held aside to be
+  // After a cut back to t that no response made (an edit; not CutExposed):
+  // the events found after t are held aside to be
   // reached again in time order, and the bodies' motion over the windows
   // checked so far counts as checked (AsCarried).
   void Reopen(double t);
@@ -296,12 +296,16 @@ class CollisionMonitor {
   // The time the step that lands the body's components on its event at u
   // starts from (the last sample before u; the earliest of its components).
   double LandingStart(int body, double u) const;
-  // Cuts back the bodies near recomputed ones (or recomputed themselves)
-  // whose motion in the window [e0, e1] is not the one a run from scratch
-  // has at this point (the step landing them on their next event held
-  // aside starts before e1); true when there were none.  `near` caches,
-  // for the window's check, which bodies are near recomputed ones.
-  bool CutCarriedNearRecomputed(double e0, double e1, std::vector<char>& near);
+  // Whether the body's motion in the window ending at e1 is not the one a
+  // run from scratch has at this point: the step landing it on its next
+  // event held aside starts before e1.
+  bool Exposed(int body, double e1) const;
+  // Cuts back each of `bodies` that is exposed to its landing step's start;
+  // whether any was.
+  bool CutExposed(std::vector<int> bodies, double e1);
+  // The moving bodies an island grown from a and b in the window [e0, e1]
+  // could take in (a chain of boxes widened by the contact margin).
+  std::vector<int> IslandReach(int a, int b, double e0, double e1);
 
   Simulation& sim_;
   const physics::EquationSystem& sys_;
@@ -374,13 +378,14 @@ class CollisionMonitor {
   // which differs from the run from scratch's where the step landing it
   // there starts before the window's end; near a recomputed body (where it
   // would be searched, or join an island) it is cut back to that step's
-  // start first (CutCarriedNearRecomputed).  The run from scratch never
+  // start first (CutExposed).  The run from scratch never
   // cuts back before the window it checks, so none of this happens there.
   bool adopted_ = false;
-  bool cutting_ = false;  // inside CutCarriedNearRecomputed's truncations
+  bool cutting_ = false;  // inside CutExposed's truncations
   std::vector<Impact> carried_;
   std::vector<std::multiset<double>> carried_times_;  // per body: its events in carried_
   IndexedSet held_aside_;                             // the bodies with events in carried_
+  std::vector<int> moving_all_;                       // the collidable bodies that are not static
   std::vector<double> carried_until_;  // per body: motion checked before up to here (AsCarried)
   std::set<std::pair<int, int>> overlap_warned_;
   std::vector<std::pair<int, double>> truncated_;  // (body, kept) awaiting AfterTruncate
