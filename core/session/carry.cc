@@ -152,11 +152,10 @@ void Session::CarryOverRun(const std::function<void(double)>& progress) {
     const auto &x = oe.bodies[ob], &y = ne.bodies[nb];
     return x.x0 == y.x0 && x.q0.coeffs() == y.q0.coeffs() && collides_same(ob, nb);
   };
-  // The landing gap is the whole scene's (the smallest body, the
-  // tolerance): where it changed, no event stands.
-  const bool same_gap = old->collisions && run_->collisions &&
-                        old->collisions->separation() == run_->collisions->separation();
   if (old->collisions && run_->collisions) {
+    // The landing gap is the whole scene's (the smallest body, the
+    // tolerance): where it changed, no event stands.
+    const bool same_gap = old->collisions->separation() == run_->collisions->separation();
     // The bodies carried over (a static one: the same body as before).
     std::map<std::string, int> old_body;
     for (size_t b = 0; b < oe.bodies.size(); ++b) old_body[oe.bodies[b].name] = static_cast<int>(b);

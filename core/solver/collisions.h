@@ -124,7 +124,8 @@ class CollisionMonitor {
   // were carried over (indices already mapped to this run's bodies);
   // `carried` marks those bodies, by this run's index (a static one: the
   // same body as before).  Each event counts as found only when the window
-  // check reaches it in time order (see "Incremental runs" below).
+  // check reaches it in time order (see "Re-simulation after an edit"
+  // below).
   void AdoptImpacts(const std::vector<Impact>& impacts, const std::vector<char>& carried);
   // Whether bodies a and b are ever tested against each other.
   bool Tested(int a, int b) const;
@@ -283,9 +284,9 @@ class CollisionMonitor {
     return carried_until_[static_cast<size_t>(body)] >= e1;
   }
   // After a cut back to t that no response made (an edit; not CutExposed):
-  // the events found after t are held aside to be
-  // reached again in time order, and the bodies' motion over the windows
-  // checked so far counts as checked (AsCarried).
+  // the events found after t are held aside to be reached again in time
+  // order, and the bodies' motion over the windows checked so far counts
+  // as checked (AsCarried).
   void Reopen(double t);
   // Records the event as found (in impacts_; add), or no longer.
   void NoteFound(const Impact& x, bool add);
@@ -376,10 +377,10 @@ class CollisionMonitor {
   // it was searched with the same motion, and its events are those held.
   // A body with an event held aside has the motion of a run that found it,
   // which differs from the run from scratch's where the step landing it
-  // there starts before the window's end; near a recomputed body (where it
-  // would be searched, or join an island) it is cut back to that step's
-  // start first (CutExposed).  The run from scratch never
-  // cuts back before the window it checks, so none of this happens there.
+  // there starts before the window's end: before it is searched against a
+  // recomputed body, or may join an island with one, it is cut back to that
+  // step's start (CutExposed).  The run from scratch never cuts back before
+  // the window it checks, so none of this happens there.
   bool adopted_ = false;
   bool cutting_ = false;  // inside CutExposed's truncations
   std::vector<Impact> carried_;

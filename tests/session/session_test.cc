@@ -423,15 +423,15 @@ TEST(Incremental, APileCarriedOverMatchesARunFromScratch) {
   EXPECT_GT(events, 1000u);
 }
 
-// The same pile, and a cube dropped onto it from a height an edit changes:
-// the pile's events are carried over, and the dropped cube strikes it.  A
-// carried event is taken as found only when the window check reaches it in
+// The same pile, and a cube dropped onto it from a height an edit changes
+// (the edit keeps the pile's events, and the dropped cube strikes it).  An
+// event kept is taken as found only when the window check reaches it in
 // time order (an impact of the dropped cube before it comes first and voids
-// it), and a carried body near a recomputed one is cut back to the step
-// before its next carried event, so that it is searched and answered with
-// the motion the run from scratch has at that point.  Before, a pair was
-// searched from a carried event that the new impact came before, and the
-// edited run missed it (1 723 events against 1 724).
+// it), and a pile cube about to be searched against the dropped one, or to
+// join an island with it, is cut back to the step before its next kept
+// event, so that it has the motion the run from scratch has at that point.
+// Before, a pair was searched from a kept event that the new impact came
+// before, and the edited run missed it (1 723 events against 1 724).
 TEST(Incremental, ACubeDroppedOntoACarriedPileMatchesARunFromScratch) {
   const std::string pile = CubesAndAFlyingCube(60, 0.5, Pile10(), 0.5, 30, 40, 5);
   auto scene = [&](double height) {
