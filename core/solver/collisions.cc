@@ -296,9 +296,7 @@ void CollisionMonitor::AdoptImpacts(const std::vector<Impact>& impacts,
   adopted_ = true;
   for (size_t b = 0; b < bodies_.size() && b < carried.size(); ++b) {
     if (!carried[b]) continue;
-    double until = kInf;  // a static body: for all time
-    for (int c : bodies_[b].components) until = std::min(until, sim_.component(c).t_end());
-    carried_until_[b] = until;
+    carried_until_[b] = ComputedUntil(static_cast<int>(b));  // a static body: for all time
   }
   // Latest first, so that the earliest is taken from the back; stable, so
   // that events of one pair at one instant (a jam, a resting island) are
@@ -321,9 +319,8 @@ void CollisionMonitor::Reopen(double t) {
   // the first window not complete (a body cut back, up to where it was cut).
   const double checked = epoch_ >= kEpochs ? sys_.t1 : EpochStart(epoch_);
   for (size_t b = 0; b < bodies_.size(); ++b) {
-    double end = kInf;
-    for (int c : bodies_[b].components) end = std::min(end, sim_.component(c).t_end());
-    carried_until_[b] = std::max(carried_until_[b], std::min(end, checked));
+    carried_until_[b] =
+        std::max(carried_until_[b], std::min(ComputedUntil(static_cast<int>(b)), checked));
   }
   // The events found after t are reached again, in time order.
   const auto after = std::upper_bound(impacts_.begin(), impacts_.end(), t,
@@ -394,13 +391,23 @@ double CollisionMonitor::LandingStart(int body, double u) const {
   return start;
 }
 
-bool CollisionMonitor::Exposed(int body, double e1) const {
+double CollisionMonitor::ComputedUntil(int body) const {
+  double until = kInf;
+  for (int c : bodies_[static_cast<size_t>(body)].components)
+    until = std::min(until, sim_.component(c).t_end());
+  return until;
+}
+
+std::optional<double> CollisionMonitor::ExposedFrom(int body, double e1) const {
   // The run from scratch has not found the body's next event held aside
   // yet, and its step there went on unbroken: where the step landing the
   // body on that event starts before e1, the body's motion in the window is
   // not the one that run has at this point.
-  if (!held_aside_.Contains(body)) return false;
-  return LandingStart(body, *carried_times_[static_cast<size_t>(body)].begin()) < e1;
+  if (!held_aside_.Contains(body) || bodies_[static_cast<size_t>(body)].components.empty())
+    return std::nullopt;
+  const double start = LandingStart(body, *carried_times_[static_cast<size_t>(body)].begin());
+  if (start < e1) return start;
+  return std::nullopt;
 }
 
 bool CollisionMonitor::CutExposed(std::vector<int> bodies, double e1) {
@@ -408,13 +415,13 @@ bool CollisionMonitor::CutExposed(std::vector<int> bodies, double e1) {
   bodies.erase(std::unique(bodies.begin(), bodies.end()), bodies.end());
   bool cut = false;
   for (int body : bodies) {
-    if (bodies_[static_cast<size_t>(body)].components.empty() || !Exposed(body, e1)) continue;
+    const std::optional<double> start = ExposedFrom(body, e1);
+    if (!start) continue;
     // Back to the landing step's start: the event and what followed from it
     // are forgotten (AfterTruncate), and the body steps on as the run from
     // scratch does until it finds what comes next.
-    const double start = LandingStart(body, *carried_times_[static_cast<size_t>(body)].begin());
     cutting_ = true;
-    for (int c : bodies_[static_cast<size_t>(body)].components) sim_.Truncate(c, start);
+    for (int c : bodies_[static_cast<size_t>(body)].components) sim_.Truncate(c, *start);
     cutting_ = false;
     cut = true;
   }
@@ -485,11 +492,7 @@ double CollisionMonitor::EpochStart(long k) const {
 
 void CollisionMonitor::UpdateEnd(int b) {
   BodyInfo& info = bodies_[b];
-  double end = sys_.t1;  // static: known for all time
-  if (!info.components.empty()) {
-    end = kInf;
-    for (int c : info.components) end = std::min(end, sim_.component(c).t_end());
-  }
+  const double end = info.components.empty() ? sys_.t1 : ComputedUntil(b);  // static: all time
   info.end = end;
   // Keep open_ the collidable bodies computed short of the end.
   if (info.collidable && end < sys_.t1)
@@ -946,7 +949,7 @@ bool CollisionMonitor::CheckEpoch() {
   std::optional<Impact> best;
   for (;;) {
     // A body that is searched against a recomputed one must have the motion
-    // the run from scratch has at this point (Exposed).
+    // the run from scratch has at this point (ExposedFrom).
     if (!held_aside_.empty()) {
       std::vector<int> searched;
       for (auto [a, b] : window_pairs_)

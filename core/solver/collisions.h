@@ -297,12 +297,15 @@ class CollisionMonitor {
   // The time the step that lands the body's components on its event at u
   // starts from (the last sample before u; the earliest of its components).
   double LandingStart(int body, double u) const;
-  // Whether the body's motion in the window ending at e1 is not the one a
-  // run from scratch has at this point: the step landing it on its next
-  // event held aside starts before e1.
-  bool Exposed(int body, double e1) const;
-  // Cuts back each of `bodies` that is exposed to its landing step's start;
-  // whether any was.
+  // The time every component of the body is computed to (infinite for a
+  // static body).
+  double ComputedUntil(int body) const;
+  // Where the body's motion in the window ending at e1 is not the one a run
+  // from scratch has at this point, the start of the step landing it on its
+  // next event held aside (which starts before e1); nothing otherwise.
+  std::optional<double> ExposedFrom(int body, double e1) const;
+  // Cuts back each of `bodies` that is exposed (ExposedFrom) to its landing
+  // step's start; whether any was.
   bool CutExposed(std::vector<int> bodies, double e1);
   // The moving bodies an island grown from a and b in the window [e0, e1]
   // could take in (a chain of boxes widened by the contact margin).
