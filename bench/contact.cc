@@ -12,6 +12,7 @@
 
 #include <Eigen/Geometry>
 #include <cmath>
+#include <cstdio>
 #include <cstring>
 #include <map>
 #include <random>
@@ -346,6 +347,17 @@ std::string ContactSceneText(const std::string& name) {
 }
 
 bool PrintContactScene(const std::string& name) {
+  // pileN@SEED: a pile of N cubes for 5 s from another seed of the
+  // generator (the piles' histories are chaotic: one pile's time says little,
+  // several seeds together are the measure).
+  int cubes = 0;
+  unsigned seed = 0;
+  char tail = 0;
+  if (std::sscanf(name.c_str(), "pile%d@%u%c", &cubes, &seed, &tail) == 2 && cubes > 0 &&
+      cubes <= 10000) {
+    std::fputs(SceneText(Pile(cubes, 5.0, seed)).c_str(), stdout);
+    return true;
+  }
   for (const ContactScene& s : ContactScenes()) {
     const std::string label = s.name + "_" + Num(s.t1) + "s";
     if (name != s.name && name != label) continue;
@@ -354,8 +366,9 @@ bool PrintContactScene(const std::string& name) {
   }
   std::string names;
   for (const ContactScene& s : ContactScenes()) names += " " + s.name + "_" + Num(s.t1) + "s";
-  Log("no contact scene %s; there are:%s (or the name before _, the first with it)", name.c_str(),
-      names.c_str());
+  Log("no contact scene %s; there are:%s (or the name before _, the first with it), and "
+      "pileN@SEED",
+      name.c_str(), names.c_str());
   return false;
 }
 

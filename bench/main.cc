@@ -54,7 +54,8 @@ int main(int argc, char** argv) {
           "dp5|tsit5]\n"
           "                    [SUITE...]\n"
           "       asgard_bench --scene NAME   print a contact scene's script (pile30, "
-          "balls100_60s, ...)\n"
+          "balls100_60s, ...,\n"
+          "                                   pileN@SEED: N cubes from another seed)\n"
           "suites: workprec stiff fig57 fig511 skip stress contact articulated threads (default: "
           "all)\n");
       return 0;

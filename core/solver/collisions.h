@@ -175,6 +175,10 @@ class CollisionMonitor {
   Eigen::Vector3d PointVelocity(int body, double t, const Eigen::Vector3d& point,
                                 Side side = Side::kRight) const;
   Eigen::Vector3d Acceleration(int body, double t) const;
+  // Acceleration under the body's own forces at t: its velocity rows' rates,
+  // or, where a hold of those rows ended at t (it slept until an event woke
+  // it there, and its held rates read zero), their equations evaluated at t.
+  Eigen::Vector3d FreeAcceleration(int body, double t);
   // Acceleration of the body's material point at `point` (world) at t.
   Eigen::Vector3d PointAcceleration(int body, double t, const Eigen::Vector3d& point) const;
   bool Asleep(int body, double t) const;
@@ -416,6 +420,15 @@ class CollisionMonitor {
   };
   std::vector<RecentEvents> recent_;
   long recent_pass_ = 0;
+  // Per body, made on first use (FreeAcceleration): its velocity rows'
+  // equations as one tape, and the variables they read.
+  struct ForceTape {
+    expr::Tape tape;
+    std::vector<int> reads;
+    int offset = 0;
+    std::vector<double> x;
+  };
+  std::map<int, ForceTape> force_tapes_;
   std::vector<SearchSpan> spans_;                // per body (SpanOf)
   std::vector<long> version_;
   CollisionCounters counters_;

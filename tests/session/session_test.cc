@@ -420,7 +420,7 @@ TEST(Incremental, APileCarriedOverMatchesARunFromScratch) {
   };
   size_t events = 0, held = 0;
   ExpectCarriedEditMatchesScratch(scene(30), scene(31), &events, &held);
-  EXPECT_GT(events, 1000u);
+  EXPECT_GT(events, 500u);  // a settling pile's train of events, carried over
 }
 
 // The same pile, and a cube dropped onto it from a height an edit changes
@@ -443,7 +443,7 @@ TEST(Incremental, ACubeDroppedOntoACarriedPileMatchesARunFromScratch) {
   };
   size_t events = 0, held = 0;
   ExpectCarriedEditMatchesScratch(scene(22), scene(21), &events, &held);
-  EXPECT_GT(events, 1000u);
+  EXPECT_GT(events, 500u);  // a settling pile's train of events, carried over
 }
 
 // Balls in a closed box, no gravity: a ball made faster strikes others,
