@@ -1117,6 +1117,22 @@ double CollisionMonitor::HeldUntil(int a, int b) const {
   const Impact& x = impacts_[static_cast<size_t>(i)];
   // Only a resting one holds.
   if (!x.resting || x.held.empty()) return -kInf;
+  // Nor one of several events of either body at one instant: their order in
+  // the record (by pair) need not be the order they were answered in, and a
+  // pair struck after its island's solve at the same instant (answered on
+  // its own, the island's other contacts left out) has moved the body the
+  // hold assumed still.  A cube pushed that way from its neighbour into the
+  // floor fell 6 mm into it while the island's hold of its floor contact
+  // stood.
+  auto moving = [&](int body) { return sys_.bodies[body].first_var >= 0; };
+  auto also = [&](size_t j) {
+    const Impact& y = impacts_[j];
+    return (moving(a) && Involves(y, a)) || (moving(b) && Involves(y, b));
+  };
+  for (size_t j = static_cast<size_t>(i); j-- > 0 && impacts_[j].t == x.t;)
+    if (also(j)) return -kInf;
+  for (size_t j = static_cast<size_t>(i) + 1; j < impacts_.size() && impacts_[j].t == x.t; ++j)
+    if (also(j)) return -kInf;
   // The pair's places in its list of bodies: a moving body whose last
   // event is an earlier one is not in it; a static one may be in the lists
   // of later events too, and is looked for.

@@ -642,18 +642,10 @@ TEST(Contact, APileOfTenCubesAtRandomRotationsComesToRestAboveTheFloor) {
     }
 }
 
-// A cube asleep on the floor, woken by a neighbour arriving slowly, is
-// solved with its island at that event; its held velocity rows then read an
-// acceleration of zero, and it was solved as weightless: its contact with
-// the floor was given nothing to rise on and held for a whole hop, while
-// the cube fell 6 mm into the floor (this pile of 30, the contact suite's
-// generator with seed 3, at 2.6 s; 1.2 cm in another).  A woken body reads
-// its forces' acceleration.  Every cube's lowest corner, at every 30 Hz
-// frame, stays within two hop heights (1e-3 of the cube's size each) of
-// the floor's top.
-TEST(Contact, ACubeWokenInAPileIsSolvedWithItsWeightAndDoesNotSinkIntoTheFloor) {
-  const SceneRun run = SimulateOk(ReadSample("../tests/solver/data/pile30_seed3.al"), 1e-6, 1e-9);
-  EXPECT_GE(run.collisions->counters().wakes, 1);
+// Every cube's lowest corner, at every 30 Hz frame of a pile's five
+// seconds, stays within a hop's height (1e-3 of the cube's size: resting
+// contact hops no higher, and lands within it) of the floor's top.
+void ExpectNoCubeSinksIntoTheFloor(const SceneRun& run) {
   const auto& bodies = run.equations->bodies;
   for (int k = 0; k <= 5 * 30; ++k) {
     const double t = k / 30.0;
@@ -664,9 +656,35 @@ TEST(Contact, ACubeWokenInAPileIsSolvedWithItsWeightAndDoesNotSinkIntoTheFloor) 
       for (const auto& piece : bodies[b].pieces)
         for (const Eigen::Vector3d& v : piece.hull.vertices)
           lowest = std::min(lowest, (x.p + x.R * v).y());
-      EXPECT_GT(lowest, -2e-3) << bodies[b].name << " at t=" << t;
+      EXPECT_GT(lowest, -1e-3) << bodies[b].name << " at t=" << t;
     }
   }
+}
+
+// A cube asleep on the floor, woken by a neighbour arriving slowly, is
+// solved with its island at that event; its held velocity rows then read an
+// acceleration of zero, and it was solved as weightless: its contact with
+// the floor was given nothing to rise on and held for a whole hop, while
+// the cube fell 2 mm into the floor (this pile of 30, the contact suite's
+// generator with seed 9, at 4.4 s; 6 mm in seed 3 before the fix below).
+// A woken body reads its forces' acceleration.
+TEST(Contact, ACubeWokenInAPileIsSolvedWithItsWeightAndDoesNotSinkIntoTheFloor) {
+  const SceneRun run = SimulateOk(ReadSample("../tests/solver/data/pile30_seed9.al"), 1e-6, 1e-9);
+  EXPECT_GE(run.collisions->counters().wakes, 1);
+  ExpectNoCubeSinksIntoTheFloor(run);
+}
+
+// An island's resting solve holds its contacts for a hop, but a pair of it
+// struck at the same instant after the solve (answered on its own, the
+// island's other contacts left out) moves its bodies again.  The record
+// orders events of one instant by pair, not by when they were answered, so
+// the island's hold was still read as the body's latest: a cube pushed by
+// its neighbour towards the floor fell 3 mm into it while its floor contact
+// stayed held (this pile of 30, seed 10, at 0.73 s).  A body with several
+// events at one instant has none of their holds.
+TEST(Contact, AHoldIsNotReadWhereItsBodyWasStruckAgainAtTheSameInstant) {
+  const SceneRun run = SimulateOk(ReadSample("../tests/solver/data/pile30_seed10.al"), 1e-6, 1e-9);
+  ExpectNoCubeSinksIntoTheFloor(run);
 }
 
 // Unit cubes c0, c1, … of mass 1 (restitution and friction 0.5, as the
