@@ -1121,8 +1121,8 @@ double CollisionMonitor::HeldUntil(int a, int b) const {
   // the record (by pair) need not be the order they were answered in, and a
   // pair struck after its island's solve at the same instant (answered on
   // its own, the island's other contacts left out) has moved the body the
-  // hold assumed still.  A cube pushed that way from its neighbour into the
-  // floor fell 6 mm into it while the island's hold of its floor contact
+  // hold assumed still.  A cube pushed that way from its neighbour towards
+  // the floor fell 3 mm into it while the island's hold of its floor contact
   // stood.
   auto moving = [&](int body) { return sys_.bodies[body].first_var >= 0; };
   auto also = [&](size_t j) {
@@ -1789,7 +1789,7 @@ void CollisionMonitor::RespondResting(const Impact& impact) {
   // A body this event woke reads its forces' acceleration, not the zero
   // rate of its held rows: read as zero, a cube woken by a neighbour's push
   // was solved as weightless, given nothing to rise on, and its contact with
-  // the floor held for a hop while it fell 1.4 cm into it.
+  // the floor held for a hop while it fell 6 mm into it.
   std::map<int, Eigen::Vector3d> acc;
   for (const auto& [body, row] : index)
     acc[body] = states[static_cast<size_t>(row)].inv_mass > 0 || Prescribed(body, t)

@@ -177,7 +177,9 @@ class CollisionMonitor {
   Eigen::Vector3d Acceleration(int body, double t) const;
   // Acceleration under the body's own forces at t: its velocity rows' rates,
   // or, where a hold of those rows ended at t (it slept until an event woke
-  // it there, and its held rates read zero), their equations evaluated at t.
+  // it there, and its held rates read zero), their equations evaluated at t
+  // (an exact joint's reaction is not in them: a woken jointed body's hop is
+  // judged by its applied forces alone).
   Eigen::Vector3d FreeAcceleration(int body, double t);
   // Acceleration of the body's material point at `point` (world) at t.
   Eigen::Vector3d PointAcceleration(int body, double t, const Eigen::Vector3d& point) const;
