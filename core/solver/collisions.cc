@@ -1129,10 +1129,10 @@ double CollisionMonitor::HeldUntil(int a, int b) const {
     const Impact& y = impacts_[j];
     return (moving(a) && Involves(y, a)) || (moving(b) && Involves(y, b));
   };
-  for (size_t j = static_cast<size_t>(i); j-- > 0 && impacts_[j].t == x.t;)
-    if (also(j)) return -kInf;
-  for (size_t j = static_cast<size_t>(i) + 1; j < impacts_.size() && impacts_[j].t == x.t; ++j)
-    if (also(j)) return -kInf;
+  size_t first = static_cast<size_t>(i);
+  while (first > 0 && impacts_[first - 1].t == x.t) --first;
+  for (size_t j = first; j < impacts_.size() && impacts_[j].t == x.t; ++j)
+    if (j != static_cast<size_t>(i) && also(j)) return -kInf;
   // The pair's places in its list of bodies: a moving body whose last
   // event is an earlier one is not in it; a static one may be in the lists
   // of later events too, and is looked for.
