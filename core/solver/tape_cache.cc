@@ -72,13 +72,19 @@ uint64_t TapeCache::Hash(const expr::Pool& pool, const std::vector<expr::NodeId>
 }
 
 // Whether DAG `b` is DAG `a` with every variable index larger by `shift`.
+// A pair of operands that is one constant node (the pool interns them:
+// masses, gravity, ½) is equal without a visit; a third of a rigid body's
+// pairs are.
 bool TapeCache::Same(const expr::Pool& pool, const std::vector<expr::NodeId>& a,
                      const std::vector<expr::NodeId>& b, int shift) {
   if (a.size() != b.size()) return false;
   if (mark_.size() < pool.size()) mark_.resize(pool.size(), 0);
   pairs_.clear();
   touched_.clear();
-  for (size_t i = 0; i < a.size(); ++i) pairs_.push_back({a[i], b[i]});
+  auto push = [&](expr::NodeId x, expr::NodeId y) {
+    if (x != y || !pool.IsConst(x)) pairs_.push_back({x, y});
+  };
+  for (size_t i = 0; i < a.size(); ++i) push(a[i], b[i]);
   bool same = true;
   while (same && !pairs_.empty()) {
     const auto [x, y] = pairs_.back();
@@ -89,13 +95,16 @@ bool TapeCache::Same(const expr::Pool& pool, const std::vector<expr::NodeId>& a,
     }
     const expr::Node& p = pool.node(x);
     const expr::Node& q = pool.node(y);
-    same = p.op == q.op && p.args.size() == q.args.size() && p.order == q.order &&
+    const size_t arity = p.args.size();
+    same = p.op == q.op && arity == q.args.size() && p.order == q.order &&
            std::bit_cast<uint64_t>(p.value) == std::bit_cast<uint64_t>(q.value) &&
            (p.op == expr::Op::kVar ? q.index == p.index + shift : q.index == p.index);
     if (!same) break;
     mark_[x] = y + 1;
     touched_.push_back(x);
-    for (size_t k = 0; k < p.args.size(); ++k) pairs_.push_back({p.args[k], q.args[k]});
+    const expr::NodeId* pa = p.args.data();
+    const expr::NodeId* qa = q.args.data();
+    for (size_t k = 0; k < arity; ++k) push(pa[k], qa[k]);
   }
   for (expr::NodeId id : touched_) mark_[id] = 0;
   return same;
