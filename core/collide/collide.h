@@ -297,9 +297,11 @@ struct SolverContact {
 // impulse).  Where the sweeps stall (a stack), the island is solved at once
 // by Newton's method in the bodies' velocities, friction cone included, and
 // the sweeps go on from there; an island that slides (where that step does
-// not apply) gets a few dozen sweeps more at most (contact_solver.cc).
+// not apply) gets a few dozen sweeps more at most (contact_solver.cc),
+// unless it is `settled` (every body in it moving no faster than resting
+// contact hops): then its sweeps go on to `max_sweeps` or the tolerance.
 // Returns the sweeps taken.
 int SolveContacts(std::vector<BodyState>& bodies, std::vector<SolverContact>& contacts,
-                  int max_sweeps, double tolerance);
+                  int max_sweeps, double tolerance, bool settled = false);
 
 }  // namespace asgard::collide

@@ -18,6 +18,8 @@ constexpr long kEpochs = 1024;
 constexpr double kHopHeight = 1e-3;       // of the body's size: resting hops rise less
 constexpr double kMarginRelative = 0.02;  // contact points kept up to this gap (of size)
 constexpr int kSleepEvents = 12;          // resting events at rest in a row before sleep
+constexpr double kSleepSpan = 0.25;       // seconds at rest before sleep, at least
+constexpr double kSleepDrift = 0.1;       // hop heights a body at rest may turn by
 constexpr int kSweeps = 200;              // contact solver sweeps at most
 constexpr int kJamEvents = 50;            // impacts at one instant before they count as a jam
 constexpr double kHoldTurn = 8.0;         // hop heights a held pair's bodies may turn by
@@ -1530,26 +1532,46 @@ void CollisionMonitor::Sleep(int body, double t, const Eigen::Vector3d& shift) {
   ++counters_.sleeps;
 }
 
-// Consecutive resting events, latest first, at which the body was at rest.
-int CollisionMonitor::SlowEvents(int body) const {
-  int count = 0;
-  for (auto it = impacts_.rbegin(); it != impacts_.rend() && count < kSleepEvents; ++it) {
-    if (!Involves(*it, body)) continue;
-    if (!it->resting || std::find(it->slow.begin(), it->slow.end(), body) == it->slow.end()) break;
-    ++count;
-  }
-  return count;
+// How far a body has moved between two of its places: its centre's
+// distance, and its turn (the angle, from the sine and cosine of the
+// relative rotation: exact for small turns) times its radius.
+namespace {
+std::pair<double, double> PlaceDistance(const collide::Pose& a, const collide::Pose& b,
+                                        double radius) {
+  const Eigen::Matrix3d turn = a.R.transpose() * b.R;
+  const Eigen::Vector3d axis(turn(2, 1) - turn(1, 2), turn(0, 2) - turn(2, 0),
+                             turn(1, 0) - turn(0, 1));
+  const double angle = std::atan2(0.5 * axis.norm(), 0.5 * (turn.trace() - 1.0));
+  return {(b.p - a.p).norm(), radius * angle};
 }
+}  // namespace
 
-std::optional<Eigen::Vector3d> CollisionMonitor::LastSpin(int body) const {
-  for (auto it = impacts_.rbegin(); it != impacts_.rend(); ++it) {
-    if (!Involves(*it, body)) continue;
-    if (!it->resting) return std::nullopt;
-    for (size_t i = 0; i < it->bodies.size() && i < it->spin.size(); ++i)
-      if (it->bodies[i] == body) return it->spin[i];
-    return std::nullopt;
+bool CollisionMonitor::StillSince(int body, double t, const collide::Pose& now) const {
+  const double radius = bodies_[static_cast<size_t>(body)].radius;
+  const double height = kHopHeight * radius;  // the hop's (AbsorbGap)
+  // The body's own event times, latest first (found_times_, as
+  // PreviousResting): how many other bodies had events meanwhile does not
+  // matter.  Every event at one instant counts, once.
+  const auto& times = found_times_[static_cast<size_t>(body)];
+  int count = 1;  // this event
+  for (auto next = times.upper_bound(t); next != times.begin();) {
+    const double when = *std::prev(next);
+    next = times.lower_bound(when);
+    auto at = std::upper_bound(impacts_.begin(), impacts_.end(), when,
+                               [](double time, const Impact& x) { return time < x.t; });
+    for (; at != impacts_.begin() && std::prev(at)->t == when; --at) {
+      const Impact& e = *std::prev(at);
+      if (!Involves(e, body)) continue;
+      if (!e.resting || std::find(e.slow.begin(), e.slow.end(), body) == e.slow.end()) return false;
+      const size_t i =
+          static_cast<size_t>(std::find(e.bodies.begin(), e.bodies.end(), body) - e.bodies.begin());
+      if (i >= e.place.size()) return false;
+      const auto [moved, turned] = PlaceDistance(e.place[i], now, radius);
+      if (moved > height + separation_ || turned > kSleepDrift * height + separation_) return false;
+    }
+    if (++count >= kSleepEvents && when <= t - kSleepSpan) return true;
   }
-  return std::nullopt;
+  return false;
 }
 
 // The landing speed below which a pair's touch is resting contact, not an
@@ -1896,7 +1918,18 @@ void CollisionMonitor::RespondResting(const Impact& impact) {
     scale = std::max(
         scale, sys_.bodies[body].mass *
                    (acc[body].norm() * hop + states[static_cast<size_t>(index[body])].v.norm()));
-  collide::SolveContacts(states, contacts, kSweeps, 1e-9 * scale + 1e-300);
+  // Moving no faster than the island's hop: at this event's start, an
+  // island that is settled gets the full sweeps (SolveContacts); their
+  // residual is the spin noise its bodies keep from solve to solve.
+  auto slow_now = [&](int body, const collide::BodyState& st) {
+    const double r = bodies_[body].radius;
+    const double limit = acc[body].norm() * hop + 1e-6 * r / hop;
+    return st.v.norm() <= limit && st.w.norm() * r <= limit;
+  };
+  const bool settled = std::all_of(members.begin(), members.end(), [&](int body) {
+    return slow_now(body, states[static_cast<size_t>(index[body])]);
+  });
+  collide::SolveContacts(states, contacts, kSweeps, 1e-9 * scale + 1e-300, settled);
   // A pair is held (not searched until its hop lands) only where the hop
   // alone can bring its points together again.  A point leaving at its
   // target lands at the hop's end, one slower by δ lands δ·hop deeper: the
@@ -1940,30 +1973,28 @@ void CollisionMonitor::RespondResting(const Impact& impact) {
   for (int body : members)
     if (body != impact.a && body != impact.b) recorded.bodies.push_back(body);
   for (const auto& c : contacts) recorded.impulse += c.normal_impulse;
-  for (int body : recorded.bodies)
-    recorded.spin.push_back(index.count(body) ? states[static_cast<size_t>(index[body])].w
-                                              : Eigen::Vector3d::Zero());
-  // At rest: moving no faster than the hop, and not turning faster; and its
-  // spin steady — held to round-off, shrinking, or changed since its last
-  // event by less than `drift`.  A spin that grows by δ at each event turns
-  // the body's points by about δ Δ K²/2 more over the K = kSleepEvents
-  // events before sleep; kept below the landing gap (the solver's position
-  // tolerance), that is the most that sleep may stop.  A cube balanced on
-  // an edge with its centre a little off it gains α r Δ per event, far
-  // above that, and tips; a body at rest varies by the solve's round-off.
-  const double drift = 2.0 * separation_ / (kSleepEvents * kSleepEvents * hop);
+  for (int body : recorded.bodies) {
+    collide::Pose place = PoseAt(body, t);
+    if (const auto it = shift.find(body); it != shift.end()) place.p += it->second;
+    recorded.place.push_back(place);
+  }
+  // At rest: moving no faster than the hop, and not turning faster, at this
+  // event and at each of the body's events back over kSleepEvents of them
+  // and kSleepSpan of time, and in the same place at each (StillSince).
+  // Where it is, not how it spins: a large island's sweeps leave its
+  // bodies' spins noisy from solve to solve though they stay put (the pile
+  // of 100, at rest from 7 s, hopped on to 13.6 s while sleep asked for a
+  // spin steady to 2·gap/(K²Δ)), and a cube tipping off an edge at α turns
+  // by ½ α T² over the span T.
   bool all_asleep = !members.empty();
   for (int body : members) {
-    const collide::BodyState& st = states[static_cast<size_t>(index[body])];
-    const double r = bodies_[body].radius;
-    const double limit = acc[body].norm() * hop + 1e-6 * r / hop;
-    const auto before = LastSpin(body);
-    const bool steady =
-        r * st.w.norm() <= drift ||
-        (before && (r * (st.w - *before).norm() <= drift || st.w.norm() <= before->norm()));
-    const bool slow = st.v.norm() <= limit && st.w.norm() * r <= limit && steady;
+    const bool slow = slow_now(body, states[static_cast<size_t>(index[body])]);
     if (slow) recorded.slow.push_back(body);
-    if (!slow || SlowEvents(body) + 1 < kSleepEvents) all_asleep = false;
+    all_asleep = all_asleep && slow &&
+                 StillSince(body, t,
+                            recorded.place[static_cast<size_t>(
+                                std::find(recorded.bodies.begin(), recorded.bodies.end(), body) -
+                                recorded.bodies.begin())]);
   }
   // The island's contacts are held until its hop lands again: its pairs
   // that were solved whole (none with an impact to come) between bodies of

@@ -81,10 +81,11 @@ struct Impact {
   // Every body whose variables jump at t (a and b, and the rest of a
   // resting island); an edit or truncation of any of them voids the event.
   std::vector<int> bodies;
-  std::vector<int> slow;  // bodies of the island found at rest at this event
-  // Resting events: the world angular velocity of each of `bodies` after the
-  // solve (a spin that grows from one event to the next is not at rest).
-  std::vector<Eigen::Vector3d> spin;
+  std::vector<int> slow;  // bodies of the island moving no faster than its hop
+  // Resting events: where each of `bodies` is after the event (its overlap
+  // push included); a body is at rest only where its points stay put from
+  // event to event (StillSince).
+  std::vector<collide::Pose> place;
   bool resting = false;  // a simultaneous solve of slow contacts, not an impact
   // Resting events: the island's held contact pairs, as positions in
   // `bodies` (which then also lists the static bodies the island touches),
@@ -217,9 +218,14 @@ class CollisionMonitor {
   }
   void QueueRelease(int var) { edits_.push_back({Simulation::Edit::Kind::kRelease, var}); }
   void ApplyEdits(double t);
-  int SlowEvents(int body) const;
-  // The body's spin after its latest event, when that was a resting solve.
-  std::optional<Eigen::Vector3d> LastSpin(int body) const;
+  // Whether `body`, found slow at a resting event at t where it is placed
+  // at `now`, is at rest: slow at each of its events back over at least
+  // kSleepEvents of them and kSleepSpan of time, and at each placed where
+  // it is now: its centre within a hop height, its turn (times its radius)
+  // within kSleepDrift of one, both plus the landing gap.  The hop moves a
+  // body up and down by its height, and where it lands varies with the
+  // solve's accuracy, a fraction of that; a body at rest does not turn.
+  bool StillSince(int body, double t, const collide::Pose& now) const;
   static bool Involves(const Impact& impact, int body);
   std::vector<int> RestingAxes(int body, const Eigen::Vector3d& n_into, bool partner_movable,
                                double t, Eigen::Vector3d& v);
