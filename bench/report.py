@@ -665,19 +665,27 @@ def main():
             return None
         targets = []
         for n in ("10", "30", "100"):
-            a = row_of("pile" + n, "asgard")
+            a = row_of("pile" + n, "asgard", 5.0)
             if a:
                 pen = num(a["max_penetration"])
                 targets.append(f"- pile of {n}: deepest penetration {fmt(pen)} of the unit size "
                                f"(target < 1% at every frame) → **{'met' if pen < 0.01 else 'missed'}**; "
                                f"final KE {fmt(num(a['final_kinetic']))}")
-        a, b = row_of("pile100", "asgard"), row_of("pile100", "bullet")
-        if a and b:
-            ratio = num(a["cpu_s"]) / num(b["cpu_s"])
-            mj = row_of("pile100", "mujoco")
-            targets.append(f"- pile of 100: CPU {fmt(ratio)}× Bullet's at h = 1/240 (target ≤ 3×) → "
-                           f"**{'met' if ratio <= 3 else 'missed'}**" +
-                           (f"; {fmt(num(a['cpu_s']) / num(mj['cpu_s']))}× MuJoCo's" if mj else ""))
+        for t1 in (5.0, 16.0):
+            a, b = row_of("pile100", "asgard", t1), row_of("pile100", "bullet", t1)
+            if a and b:
+                ratio = num(a["cpu_s"]) / num(b["cpu_s"])
+                mj = row_of("pile100", "mujoco", t1)
+                line = (f"- pile of 100, {fmt(t1)} s: CPU {fmt(ratio)}× Bullet's at h = 1/240 "
+                        f"(target ≤ 3×) → **{'met' if ratio <= 3 else 'missed'}**" +
+                        (f"; {fmt(num(a['cpu_s']) / num(mj['cpu_s']))}× MuJoCo's" if mj else ""))
+                if t1 > 5.0:
+                    ke = num(a["final_kinetic"])
+                    line += (f"; deepest penetration {fmt(num(a['max_penetration']))}; final KE "
+                             f"{fmt(ke)} (at rest: 0) → **{'met' if ke == 0 else 'missed'}** "
+                             f"(Bullet's {fmt(num(b['final_kinetic']))}" +
+                             (f", MuJoCo's {fmt(num(mj['final_kinetic']))})" if mj else ")"))
+                targets.append(line)
         for n in ("100", "1000"):
             a, b = row_of("balls" + n, "asgard", 60.0), row_of("balls" + n, "bullet", 60.0)
             if a and b:
