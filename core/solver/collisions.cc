@@ -1973,11 +1973,12 @@ void CollisionMonitor::RespondResting(const Impact& impact) {
   for (int body : members)
     if (body != impact.a && body != impact.b) recorded.bodies.push_back(body);
   for (const auto& c : contacts) recorded.impulse += c.normal_impulse;
-  for (int body : recorded.bodies) {
+  auto place_of = [&](int body) {  // after the overlap push
     collide::Pose place = PoseAt(body, t);
     if (const auto it = shift.find(body); it != shift.end()) place.p += it->second;
-    recorded.place.push_back(place);
-  }
+    return place;
+  };
+  for (int body : recorded.bodies) recorded.place.push_back(place_of(body));
   // At rest: moving no faster than the hop, and not turning faster, at this
   // event and at each of the body's events back over kSleepEvents of them
   // and kSleepSpan of time, and in the same place at each (StillSince).
@@ -1990,11 +1991,7 @@ void CollisionMonitor::RespondResting(const Impact& impact) {
   for (int body : members) {
     const bool slow = slow_now(body, states[static_cast<size_t>(index[body])]);
     if (slow) recorded.slow.push_back(body);
-    all_asleep = all_asleep && slow &&
-                 StillSince(body, t,
-                            recorded.place[static_cast<size_t>(
-                                std::find(recorded.bodies.begin(), recorded.bodies.end(), body) -
-                                recorded.bodies.begin())]);
+    all_asleep = all_asleep && slow && StillSince(body, t, place_of(body));
   }
   // The island's contacts are held until its hop lands again: its pairs
   // that were solved whole (none with an impact to come) between bodies of

@@ -647,10 +647,10 @@ TEST(Contact, APileOfTenCubesAtRandomRotationsComesToRestAboveTheFloor) {
 // (kGraze, 1e-3 of the smaller bounding radius, √3/2 for a unit cube): a
 // landing is found before it goes deeper, and a resting hop lands at the
 // landing gap, above the floor.
-void ExpectNoCubeSinksIntoTheFloor(const SceneRun& run, double t1 = 5.0) {
+void ExpectNoCubeSinksIntoTheFloor(const SceneRun& run) {
   const double graze = 1e-3 * std::sqrt(3.0) / 2;
   const auto& bodies = run.equations->bodies;
-  for (int k = 0; k <= std::lround(t1 * 30); ++k) {
+  for (int k = 0; k <= std::lround(run.equations->t1 * 30); ++k) {
     const double t = k / 30.0;
     for (size_t b = 0; b < bodies.size(); ++b) {
       if (bodies[b].first_var < 0) continue;
@@ -710,7 +710,7 @@ TEST(Contact, APileOfAHundredCubesComesToRestAndFallsAsleep) {
     EXPECT_EQ(Velocity(run, body.name, t1).norm(), 0.0) << body.name;
     EXPECT_EQ(Spin(run, body.name, t1).norm(), 0.0) << body.name;
   }
-  ExpectNoCubeSinksIntoTheFloor(run, t1);
+  ExpectNoCubeSinksIntoTheFloor(run);
 }
 
 // Unit cubes c0, c1, … of mass 1 (restitution and friction 0.5, as the
