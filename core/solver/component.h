@@ -95,6 +95,7 @@
 // per mode.
 #pragma once
 
+#include <array>
 #include <map>
 #include <memory>
 #include <string>
@@ -262,10 +263,18 @@ class Component {
   // Rows of a mode in free flight under constant forces: per row, -1 where
   // the rate is a constant (or a constant prescribes the value, or the row is
   // still), else the local row whose variable the rate is; `still`: rows
-  // whose rates must be zero at a sample for the mode to move so.
+  // whose rates must be zero at a sample for the mode to move so; `spins`:
+  // bodies whose angular velocity is constant (its rates are exactly zero:
+  // no torque, isotropic inertia), so that their orientation turns at a
+  // constant rate, exactly (BallisticStep), while they fly.
+  struct Spin {
+    std::array<int, 4> q;  // local rows of the orientation (qw qx qy qz)
+    std::array<int, 3> w;  // local rows of the angular velocity (body axes)
+  };
   struct Ballistic {
     std::vector<int> rows;
     std::vector<int> still;
+    std::vector<Spin> spins;
   };
   Ballistic BallisticRows(const std::vector<expr::NodeId>& outputs,
                           const std::vector<char>& prescribed) const;

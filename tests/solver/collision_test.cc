@@ -669,10 +669,13 @@ void ExpectNoCubeSinksIntoTheFloor(const SceneRun& run) {
 // acceleration of zero, and it was solved as weightless: its contact with
 // the floor was given nothing to rise on and held for a whole hop, while
 // the cube fell into the floor (this pile of 30, the contact suite's
-// generator with seed 13: 2.8 mm at 3.83 s before the fix below; 6 mm in
-// seed 3).  A woken body reads its forces' acceleration.
+// generator with seed 12: 3.2 mm at 3.77 s without the fix below; 6 mm in
+// seed 3 when it was found).  A woken body reads its forces' acceleration.
+// A pile's history changes with any change to the solver; the seed is one
+// whose pile wakes a cube and sinks without the fix (checked when the seed
+// was chosen).
 TEST(Contact, ACubeWokenInAPileIsSolvedWithItsWeightAndDoesNotSinkIntoTheFloor) {
-  const SceneRun run = SimulateOk(ReadSample("../tests/solver/data/pile30_seed13.al"), 1e-6, 1e-9);
+  const SceneRun run = SimulateOk(ReadSample("../tests/solver/data/pile30_seed12.al"), 1e-6, 1e-9);
   EXPECT_GE(run.collisions->counters().wakes, 1);
   ExpectNoCubeSinksIntoTheFloor(run);
 }
