@@ -694,7 +694,7 @@ TEST(Contact, AHoldIsNotReadWhereItsBodyWasStruckAgainAtTheSameInstant) {
 }
 
 // The contact suite's pile of 100 cubes (seed 14), run to 16 s: it settles
-// and falls asleep whole (at 9.1 s), every cube's velocity and spin exactly
+// and falls asleep whole (by 10 s), every cube's velocity and spin exactly
 // 0 at the end and no event in the last 4 s.  Before, it had settled by
 // 7 s but slept only at 13.6 s, its island of 72 cubes solved at every hop
 // meanwhile: the sweeps, cut short where they slide, left its spins (times
