@@ -197,32 +197,42 @@ struct Simplex {
   std::array<double, 4> lambda{};
   int n = 0;
 
-  // Replaces the simplex by its sub-simplex closest to the origin; returns v.
-  Eigen::Vector3d Reduce() {
-    Points w;
+  // The sub-simplex closest to the origin of the simplex with `extra`
+  // appended (null: the simplex itself), its points in `w`; not applied.
+  Sub Solve(const SupportVertex* extra, Points& w) const {
     for (int k = 0; k < n; ++k) w[static_cast<size_t>(k)] = vertex[static_cast<size_t>(k)].w;
-    Sub sub;
-    switch (n) {
+    const int m = extra != nullptr ? n + 1 : n;
+    if (extra != nullptr) w[static_cast<size_t>(n)] = extra->w;
+    switch (m) {
       case 1:
-        sub = Single(0);
-        break;
+        return Single(0);
       case 2:
-        sub = SolveSegment(w, 0, 1);
-        break;
+        return SolveSegment(w, 0, 1);
       case 3:
-        sub = SolveTriangle(w, 0, 1, 2);
-        break;
+        return SolveTriangle(w, 0, 1, 2);
       default:
-        sub = SolveTetrahedron(w);
-        break;
+        return SolveTetrahedron(w);
     }
+  }
+  // The closest point of a solved sub-simplex (Closest once it is applied).
+  static Eigen::Vector3d ClosestOf(const Sub& sub, const Points& w) {
+    return sub.n == 4 ? Eigen::Vector3d::Zero() : Combine(sub, w);
+  }
+  // Keeps the sub-simplex `sub` of the simplex with `extra` appended.
+  void Apply(const Sub& sub, const SupportVertex* extra) {
     std::array<SupportVertex, 4> kept;
     for (int k = 0; k < sub.n; ++k) {
-      kept[static_cast<size_t>(k)] = vertex[static_cast<size_t>(sub.index[static_cast<size_t>(k)])];
+      const int i = sub.index[static_cast<size_t>(k)];
+      kept[static_cast<size_t>(k)] = i == n ? *extra : vertex[static_cast<size_t>(i)];
       lambda[static_cast<size_t>(k)] = sub.lambda[static_cast<size_t>(k)];
     }
     vertex = kept;
     n = sub.n;
+  }
+  // Replaces the simplex by its sub-simplex closest to the origin; returns v.
+  Eigen::Vector3d Reduce() {
+    Points w;
+    Apply(Solve(nullptr, w), nullptr);
     return Closest();
   }
   Eigen::Vector3d Closest() const {
@@ -401,11 +411,13 @@ DistanceResult Distance(const Piece& a, const Pose& pa, const Piece& b, const Po
     const double gap = vv - v.dot(w.w);  // |v| × (upper − lower bound)
     if (gap <= kGapTolerance * scale * std::sqrt(vv)) break;
     if (s.Contains(w.ia, w.ib)) break;
-    Simplex next = s;
-    next.vertex[static_cast<size_t>(next.n++)] = w;
-    const Eigen::Vector3d v_next = next.Reduce();
+    // The simplex with w, solved before it replaces this one (kept where
+    // there is no progress).
+    Points points;
+    const Sub sub = s.Solve(&w, points);
+    const Eigen::Vector3d v_next = Simplex::ClosestOf(sub, points);
     if (!(v_next.squaredNorm() < vv)) break;  // no progress left in floating point
-    s = next;
+    s.Apply(sub, &w);
     v = v_next;
   }
 
