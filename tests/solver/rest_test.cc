@@ -6,6 +6,9 @@
 #include <cmath>
 #include <cstdio>
 #include <string>
+#include <utility>
+
+#include <Eigen/Dense>
 
 #include "core/pipeline/pipeline.h"
 #include "tests/solver/simulate_checked.h"
@@ -265,6 +268,51 @@ TEST(BallisticSteps, AThousandFreeBallsCostFewerThanTwoStepsEach) {
     EXPECT_NEAR(std::atan2(qz, qw), std::remainder(t, 2 * std::acos(-1.0)), 1.5e-6) << t;
     EXPECT_NEAR(run.simulation->Value(v + physics::kY, t), t - 0.5 * 9.81 * t * t, 1e-9) << t;
   }
+}
+
+// A cube and a ball spinning about a skew axis, without torque, keep their
+// angular velocity (isotropic inertia): their orientation is
+// q(t) = (cos(|ω|t/2), sin(|ω|t/2) ω/|ω|) from the identity, exactly at each
+// step and to the interpolant's bound between steps (tol = rtol + atol per
+// row, above), every step ballistic.  A brick of unequal sides precesses:
+// its angular velocity's rates are not zero, and it is integrated.
+TEST(BallisticSteps, ACubeAndABallTurnExactlyAboutAnyAxisAndABrickIsIntegrated) {
+  const std::string text =
+      "shape_set cube -desc {-sub {-box {1 1 1}}}\n"
+      "shape_set brick -desc {-sub {-box {1 2 3}}}\n"
+      "shape_set ball -desc {-sub {-pos {0 0 0} -sphere 0.5}}\n"
+      "body cube -shape cube -mass 1 -init_pos {0 0 0} -init_drot {1 2 3}\n"
+      "body ball -shape ball -mass 2 -init_pos {5 0 0} -init_dpos {0 3 0} -init_drot {-2 0.5 1}\n"
+      "body brick -shape brick -mass 1 -init_pos {10 0 0} -init_drot {1 2 3}\n"
+      "force -body cube -y -9.81 -gravitational 1\n"
+      "force -body ball -y -9.81 -gravitational 1\n"
+      "force -body brick -y -9.81 -gravitational 1\n"
+      "simulator -finish 10 -collisions 0\n";
+  const pipeline::Run run = Simulate(text, 1e-6, 1e-9);
+  const double tol = 1e-6 + 1e-9;
+  for (const auto& [name, w] : {std::pair<std::string, Eigen::Vector3d>{"cube", {1, 2, 3}},
+                                {"ball", {-2, 0.5, 1}}}) {
+    const int v = run.equations->bodies[run.equations->FindBody(name)].first_var;
+    const solver::Counters& c = run.simulation->component(run.simulation->component_of(v)).counters();
+    EXPECT_EQ(c.ballistic_steps, c.steps) << name;
+    // At most a phase |ω|h/2 of 0.4164 per step (the test above).
+    EXPECT_LE(c.steps, std::ceil(0.5 * w.norm() * 10.0 / 0.4164) + 1) << name;
+    for (double t : {0.0, 0.1, 1.234, 3.0, 6.66, 9.99, 10.0}) {
+      const double half = 0.5 * w.norm() * t;
+      const Eigen::Vector4d q(std::cos(half), std::sin(half) * w.x() / w.norm(),
+                              std::sin(half) * w.y() / w.norm(), std::sin(half) * w.z() / w.norm());
+      for (int i = 0; i < 4; ++i)
+        EXPECT_NEAR(run.simulation->Value(v + physics::kQw + i, t), q[i], tol)
+            << name << " t " << t << " row " << i;
+      for (int i = 0; i < 3; ++i)  // constant, up to the interpolation weights' rounding
+        EXPECT_DOUBLE_EQ(run.simulation->Value(v + physics::kW1 + i, t), w[i]) << name << " t " << t;
+    }
+  }
+  const int brick = run.equations->bodies[run.equations->FindBody("brick")].first_var;
+  const solver::Counters& c =
+      run.simulation->component(run.simulation->component_of(brick + physics::kQw)).counters();
+  EXPECT_GT(c.explicit_steps, 0);
+  EXPECT_EQ(c.ballistic_steps, 0);
 }
 
 // The same with collisions on: the collision monitor reads and writes fused
