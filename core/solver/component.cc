@@ -447,8 +447,9 @@ Component::Ballistic Component::BallisticRows(const std::vector<expr::NodeId>& o
 }
 
 // How long the last sample's mode may move ballistically (BallisticRows):
-// for ever when its still rows' rates are zero, else as long as they would
-// move less than RestSpan allows (they are kept), else 0.
+// for ever when its still rows' rates are zero and nothing turns, else as
+// long as the still rows would move less than RestSpan allows (they are
+// kept) and the playback follows each turn (below), else 0.
 double Component::BallisticSpan(const Mode& m, double h) {
   if (m.ballistic.rows.empty()) return 0.0;
   const double* x = wave_.x(wave_.size() - 1);
@@ -476,7 +477,8 @@ double Component::BallisticSpan(const Mode& m, double h) {
 }
 
 // One exact step of a ballistic mode to the next breakpoint (or the step
-// limit): positions on their quadratics, velocities on their lines.
+// limit): positions on their quadratics, velocities on their lines,
+// turning bodies' orientations on their turns.
 void Component::BallisticStep(const Mode& m, double t, double h_max) {
   const int k = wave_.size() - 1;
   const size_t n = vars_.size();
