@@ -173,9 +173,9 @@ Eigen::Matrix3d JointSolver::Coupling(int i, int k) const {
 }
 
 void JointSolver::Prepare(double t, const double* values, const char* prescribed,
-                          const expr::ExternFn* externs) {
+                          const expr::ExternFn* externs, int32_t x_offset) {
   for (BodyData& b : bodies_) {
-    const int v0 = sys_.bodies[b.body].first_var;
+    const int v0 = sys_.bodies[b.body].first_var - x_offset;
     Eigen::Quaterniond q(values[v0 + kQw], values[v0 + kQx], values[v0 + kQy], values[v0 + kQz]);
     b.R = q.normalized().toRotationMatrix();
     if (b.isotropic == 0) b.inv_inertia_world.noalias() = b.R * b.inv_inertia * b.R.transpose();
@@ -191,7 +191,7 @@ void JointSolver::Prepare(double t, const double* values, const char* prescribed
         if (any_anisotropic_) e->arm_skew = Skew(e->arm);
       }
   if (!point_values_.empty() && !points_constant_)
-    point_tape_.Evaluate(t, values, point_values_.data(), externs);
+    point_tape_.Evaluate(t, values, point_values_.data(), externs, x_offset);
 }
 
 void JointSolver::ProjectVelocities(double t, const double* values, double* state,
@@ -218,13 +218,14 @@ void JointSolver::ProjectVelocities(double t, const double* values, double* stat
 }
 
 void JointSolver::Apply(double t, const double* values, double* rates, const char* prescribed,
-                        const expr::ExternFn* externs, double* magnitude, int refinements) {
-  Prepare(t, values, prescribed, externs);
+                        const expr::ExternFn* externs, double* magnitude, int refinements,
+                        int32_t x_offset) {
+  Prepare(t, values, prescribed, externs, x_offset);
 
   // Position, velocity and free acceleration of one end of a joint.
   auto end_state = [&](const End& e, Eigen::Vector3d& p, Eigen::Vector3d& v, Eigen::Vector3d& a) {
     const BodyData& b = bodies_[e.body];
-    const int v0 = sys_.bodies[b.body].first_var;
+    const int v0 = sys_.bodies[b.body].first_var - x_offset;
     p = Eigen::Vector3d(values[v0 + kX], values[v0 + kY], values[v0 + kZ]) + e.arm;
     v = Eigen::Vector3d(values[v0 + kDx], values[v0 + kDy], values[v0 + kDz]) +
         b.R * b.w.cross(e.s);

@@ -41,6 +41,7 @@
 #pragma once
 
 #include <Eigen/Dense>
+#include <cstdint>
 #include <functional>
 #include <vector>
 
@@ -71,8 +72,11 @@ class JointSolver {
   // `refinements`: steps of iterative refinement of the joint forces (one
   // leaves a relative error of ε², enough for integration; the rest test
   // asks for two, as a long chain's K is less well conditioned).
+  // `x_offset`: values[v − x_offset] is variable v (as for Tape::Evaluate),
+  // so that a component's own state array serves when every body is in it.
   void Apply(double t, const double* values, double* rates, const char* prescribed,
-             const expr::ExternFn* externs, double* magnitude = nullptr, int refinements = 1);
+             const expr::ExternFn* externs, double* magnitude = nullptr, int refinements = 1,
+             int32_t x_offset = 0);
 
   // An impulsive joint response: after velocities jumped (a collision),
   // impulses at the joints make every joint's relative velocity zero again
@@ -125,7 +129,7 @@ class JointSolver {
 
   void Symbolic();
   void Prepare(double t, const double* values, const char* prescribed,
-               const expr::ExternFn* externs);
+               const expr::ExternFn* externs, int32_t x_offset = 0);
   // Factors K + εD at the prepared state and overwrites rhs_ with the
   // solution of K λ = rhs_, refined `refinements` times against K.
   void Solve(int refinements = 1);

@@ -546,11 +546,13 @@ void Component::EvalF(const Mode& m, double t, const double* y, double* out, Sid
   const expr::ExternFn& ext = sim_.externs();
   ++counters_.rhs_evaluations;
   // A component that reads only its own variables, numbered in a run, and
-  // nothing else from the simulation's values (joints, prescribed rates)
-  // has its tape read y itself: tape variable i is ours at i + shift −
-  // first_var_.  Else y goes to the values first, with the inputs.
-  if (first_var_ >= 0 && inputs_.empty() && !joints_ && m.gdot_rows.empty()) {
+  // nothing else from the simulation's values (prescribed rates) has its
+  // tape and its joints read y itself: tape variable i is ours at i + shift
+  // − first_var_ (a joint's point is a function of t only).  Else y goes to
+  // the values first, with the inputs.
+  if (first_var_ >= 0 && inputs_.empty() && m.gdot_rows.empty()) {
     m.f_tape.tape->Evaluate(te, y, out, &ext, first_var_ - m.f_tape.shift, lane_);
+    if (joints_) joints_->Apply(te, y, out, Prescribed(m), &ext, nullptr, 1, first_var_);
     return;
   }
   Load(t, y, side);
