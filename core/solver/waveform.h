@@ -62,11 +62,18 @@ struct SampleInfo {
   bool implicit = false;    // the component was integrating implicitly (stiff) here
   uint8_t stiff_votes = 0;  // steps that argued for the other method
   uint8_t calm_votes = 0;   // explicit: consecutive steps that did not look stiff
+  // Returns from implicit to explicit steps made because the explicit ones
+  // were the cheaper (component.cc, kSwitchVotes): each doubles the votes
+  // the next switch to implicit steps needs.
+  uint8_t cheaper_returns = 0;
   double err_prev = 1e-4;   // last accepted error estimate (PI step control)
   long jumps_seen = 0;      // restart: the component's jump generation it applied
   // Implicit: the sample whose Jacobian the step from here reuses (−1: take
   // it here).  Kept with the sample so a resumed run reuses the same one.
   int jac_from = -1;
+  // Implicit: the cost of a step (right-hand sides and factorizations,
+  // rejected attempts included), averaged over the last steps; 0: none yet.
+  float implicit_cost = 0.0f;
   // Implicit: Newton's factor ρ/(1−ρ) as the step into this sample left it,
   // the next step's start (component.cc, EtaDrift; 10: not known).
   double newton_eta = 10.0;

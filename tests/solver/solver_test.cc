@@ -440,6 +440,37 @@ TEST(StiffLink, TheLStableMethodTakesOverOnceTheTransientHasDecayed) {
   EXPECT_GE(comp.counters().esdirk_steps, late);
 }
 
+TEST(MethodChoice, APendulumAtLooseToleranceStaysOnItsJointAndMostlyExplicit) {
+  // An exact joint's stabilization (ρ ≈ 22) holds the explicit steps of a
+  // pendulum to their stability limit at loose tolerance.  The ESDIRK's
+  // steps there are no longer and cost three times as much, so the
+  // component returns to explicit steps (component.cc, kExplicitStepCost);
+  // and those stay within the limit, where a step beyond it with an error
+  // estimate just below 1 would let the joint's mode grow (kTrustedRtol).
+  // Each step's error is at most rtol of the ball's distance from the
+  // pivot (1), so the distance stays within rtol of 1.
+  const std::string text = std::string(testing::kBallShape) +
+                           "body m -shape ball -mass 1 -init_pos {0.8414709848078965 "
+                           "-0.5403023058681398 0}\n"
+                           "link -body1 m -offset1 {-0.8414709848078965 0.5403023058681398 0} "
+                           "-x 0 -y 0 -z 0\n"
+                           "force -body m -x 0 -y -9.81 -z 0 -gravitational 1\n"
+                           "simulator -finish 10\n";
+  for (double rtol : {0.3, 0.1}) {
+    const SceneRun run = SimulateOk(text, Tol(rtol, rtol));
+    if (!run.ok) continue;
+    double worst = 0;
+    for (double t = 0; t <= 10; t += 0.01) {
+      const double d = std::hypot(At(run, "m", physics::kX, t), At(run, "m", physics::kY, t),
+                                  At(run, "m", physics::kZ, t));
+      worst = std::max(worst, std::abs(d - 1.0));
+    }
+    EXPECT_LE(worst, rtol) << "rtol " << rtol;
+    const solver::Counters c = run.simulation->totals();
+    EXPECT_LE(4 * c.esdirk_steps, c.explicit_steps) << "rtol " << rtol;
+  }
+}
+
 using testing::ExpectSameWaveforms;
 
 TEST(Determinism, TwoRunsGiveBitIdenticalWaveforms) {
