@@ -87,7 +87,7 @@ Simulates the scene script FILE and prints a summary.
 
 Options:
   --until T         simulate to time T (default: the scene's simulator -finish)
-  --rtol R          relative tolerance (default 1e-6, or the scene's -rtol)
+  --rtol R          relative tolerance (default 1e-6, or the scene's -rtol; at most 0.1)
   --atol A          absolute tolerance (default 1e-9, or the scene's -atol)
   --out FILE        write body trajectories sampled at the frame rate
                     (simulator -frames, default 30 per second): .csv or .json

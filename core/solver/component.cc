@@ -108,14 +108,6 @@ constexpr int kCalmVotes = 6;
 constexpr double kCostMemory = 0.75;
 constexpr double kExplicitStepCost = 6.0;
 constexpr int kMaxReturns = 4;
-// Beyond the stability limit the error estimate of an explicit step rejects
-// a mode that grows from step to step once the mode is as large as the
-// tolerance.  Above this rtol that is too late: the pendulum at rtol 0.3
-// took a step of hρ = 4.3 with an error estimate of 0.99 and threw the ball
-// 7 km off its pivot within 0.3 s.  There explicit steps stay within the
-// limit.  (At rtol 1e-2 and below, capped so, the pendulum took 8% more
-// right-hand sides at equal error: the estimate had only accepted safe steps.)
-constexpr double kTrustedRtol = 1e-2;
 // Spectral radius (1/s) above which a component starts implicitly, and
 // below which alone it may switch back to explicit steps.  At ρ = 100 an
 // explicit step is bounded by stability to 35 ms (Tsitouras: hλ ≥ −3.5),
@@ -1345,10 +1337,6 @@ bool Component::Step() {
         factor = std::exp(dp::kBeta * std::log(info.err_prev) - dp::kAlpha * std::log(att.err)) *
                  dp::kSafety;
         factor = std::clamp(factor, dp::kMinFactor, rejected ? 1.0 : dp::kMaxFactor);
-        // Not beyond the stability limit where the tolerance is loose
-        // (kTrustedRtol).
-        if (o.rtol > kTrustedRtol && att.h_rho > kExplicitStability)
-          factor = std::min(factor, kExplicitStability / att.h_rho);
         if (auto_method && att.h_rho > kExplicitStability) {
           next.stiff_votes = info.stiff_votes + 1;
         } else if (auto_method && att.h_rho > 0.0) {
