@@ -99,7 +99,7 @@ constexpr int kCalmVotes = 6;
 // hρ = kExplicitStability, would have covered it for less; kCalmVotes such
 // votes switch, and each such return doubles the votes the next switch to
 // implicit steps needs (at most 2^kMaxReturns times), so that the two
-// methods do not alternate at the limit (the pendulum at 0.1: 817).  An
+// methods do not alternate at the limit (the pendulum at 0.1: 783).  An
 // implicit step's cost is its right-hand sides plus factorizations, rejected
 // attempts included (for a component small enough to difference its
 // Jacobian an LU costs about a right-hand side), averaged with memory
