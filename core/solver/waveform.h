@@ -63,8 +63,8 @@ struct SampleInfo {
   uint8_t stiff_votes = 0;  // steps that argued for the other method
   uint8_t calm_votes = 0;   // explicit: consecutive steps that did not look stiff
   // Returns from implicit to explicit steps made because the explicit ones
-  // were the cheaper (component.cc, kSwitchVotes): each doubles the votes
-  // the next switch to implicit steps needs.
+  // were the cheaper (component.cc, kMaxReturns): each doubles the votes
+  // the next switch to implicit steps needs.  Kept across restarts.
   uint8_t cheaper_returns = 0;
   double err_prev = 1e-4;   // last accepted error estimate (PI step control)
   long jumps_seen = 0;      // restart: the component's jump generation it applied
