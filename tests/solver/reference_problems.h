@@ -47,14 +47,16 @@ inline double DampedLinkExact(double k, double mass, double x0, double t) {
 // Pendulum: a ball (radius 0.5, mass 1, I_cm = 0.1) whose point at distance
 // L from its centre is linked to the origin — links have zero rest length, so
 // the link is a stiff ball joint (seed 5.1.2) and the ball swings as a
-// physical pendulum, released at angle θ0 from the vertical.
+// physical pendulum, released at angle θ0 from the vertical.  k = 0: the
+// link is an exact joint (no -tightness).
 inline std::string Pendulum(double length, double theta0, double g, double k, double finish) {
   const double sx = std::sin(theta0), cy = std::cos(theta0);
   return std::string(kBallShape) + "body m -shape ball -mass 1 -init_pos {" +
          std::to_string(length * sx) + " " + std::to_string(-length * cy) + " 0}\n" +
          "link -body1 m -offset1 {" + std::to_string(-length * sx) + " " +
-         std::to_string(length * cy) + " 0} -x 0 -y 0 -z 0 -tightness " + std::to_string(k) +
-         "\n" + "force -body m -x 0 -y -" + std::to_string(g) + " -z 0 -gravitational 1\n" +
+         std::to_string(length * cy) + " 0} -x 0 -y 0 -z 0" +
+         (k > 0 ? " -tightness " + std::to_string(k) : std::string()) + "\n" +
+         "force -body m -x 0 -y -" + std::to_string(g) + " -z 0 -gravitational 1\n" +
          "simulator -finish " + std::to_string(finish) + "\n";
 }
 // Period of that physical pendulum: 4 √(L_eq/g) K(sin(θ0/2)) with the

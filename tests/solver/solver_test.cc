@@ -448,13 +448,7 @@ TEST(MethodChoice, APendulumAtLooseToleranceStaysOnItsJointAndMostlyExplicit) {
   // A step may err by rtol of the ball's distance from the pivot (1) and
   // the joint's stabilization pulls the distance back, so it stays within
   // rtol of 1 (measured: 0.019 at rtol 0.1).
-  const std::string text = std::string(testing::kBallShape) +
-                           "body m -shape ball -mass 1 -init_pos {0.8414709848078965 "
-                           "-0.5403023058681398 0}\n"
-                           "link -body1 m -offset1 {-0.8414709848078965 0.5403023058681398 0} "
-                           "-x 0 -y 0 -z 0\n"
-                           "force -body m -x 0 -y -9.81 -z 0 -gravitational 1\n"
-                           "simulator -finish 10\n";
+  const std::string text = testing::Pendulum(1.0, 1.0, 9.81, 0.0, 10.0);
   for (double rtol : {0.1, 0.05}) {
     const SceneRun run = SimulateOk(text, Tol(rtol, rtol));
     if (!run.ok) continue;
